@@ -1,0 +1,12 @@
+# Warnings for blockdem's own targets (tests, examples, benchmarks); never imposed on consumers.
+function(blockdem_target_warnings target)
+  if(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+    target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
+      -Wold-style-cast -Wcast-align -Woverloaded-virtual -Wdouble-promotion)
+    if(BLOCKDEM_WARNINGS_AS_ERRORS)
+      target_compile_options(${target} PRIVATE -Werror)
+    endif()
+  elseif(MSVC)
+    target_compile_options(${target} PRIVATE /W4 $<$<BOOL:${BLOCKDEM_WARNINGS_AS_ERRORS}>:/WX>)
+  endif()
+endfunction()
