@@ -1,0 +1,107 @@
+#pragma once
+// Maxwell damping (paper Sect. 4.2): N spring-dashpot branches in parallel with each joint spring (and each
+// tetrahedron). Branch i adds a spring alpha_i k in series with a dashpot of relaxation time tau_i.
+
+#include <array>
+#include <cstddef>
+#include <span>
+
+#include "blockdem/core/constexpr_math.hpp"
+#include "blockdem/core/error.hpp"
+
+namespace blockdem::damping {
+
+/// The normalised complex modulus M_T = Re + i Im of a spring with Maxwell branches (eq. 15, 19).
+struct ComplexModulus {
+  double real = 1.0;
+  double imag = 0.0;
+
+  /// |M_T| (eq. 18).
+  constexpr double magnitude() const noexcept { return cmath::sqrt(real * real + imag * imag); }
+  /// zeta = Im(M_T) / (2 Re(M_T)) (eq. 16, 19).
+  constexpr double damping_ratio() const noexcept { return imag / (2.0 * real); }
+};
+
+/// One Maxwell branch: stiffness fraction alpha (dimensionless, > 0) and relaxation time tau = eta / (alpha k) (s).
+struct MaxwellBranch {
+  double alpha = 0.0;
+  double tau = 0.0;  // s
+
+  /// The branch's own contribution to the complex modulus at omega (rad/s), eq. 14.
+  constexpr ComplexModulus modulus_term(double omega) const noexcept {
+    const double x = tau * omega;
+    const double d = 1.0 + x * x;
+    return {alpha * x * x / d, alpha * x / d};
+  }
+
+  /// Damping ratio of the standard linear solid made of this branch alone (eq. 16).
+  constexpr double damping_ratio(double omega) const noexcept {
+    const double x = tau * omega;
+    return alpha * x / (2.0 * (1.0 + x * x * (1.0 + alpha)));
+  }
+
+  /// |M_T| of this branch alone (eq. 18).
+  constexpr double modulus(double omega) const noexcept {
+    const double x2 = tau * tau * omega * omega;
+    return cmath::sqrt(1.0 + alpha * (2.0 + alpha) * x2 / (1.0 + x2));
+  }
+
+  /// Peak of eq. 16: alpha / (4 sqrt(1 + alpha)) (eq. 17).
+  constexpr double peak_damping_ratio() const noexcept { return alpha / (4.0 * cmath::sqrt(1.0 + alpha)); }
+
+  /// Angular frequency of the peak: 1 / (tau sqrt(1 + alpha)) (eq. 17), rad/s.
+  constexpr double peak_angular_frequency() const noexcept { return 1.0 / (tau * cmath::sqrt(1.0 + alpha)); }
+
+  /// The branch whose peak is `peak_damping_ratio` at `peak_omega` (rad/s): eq. 17 inverted. With s = sqrt(1 + alpha),
+  /// zeta = (s^2 - 1) / (4 s) gives s = 2 zeta + sqrt(4 zeta^2 + 1). This is how 3DEC's `maxwell z f` pairs are read.
+  static constexpr MaxwellBranch from_peak(double peak_damping_ratio, double peak_omega) {
+    if (!(peak_damping_ratio > 0.0) || !(peak_omega > 0.0))
+      throw InvalidArgument("maxwell branch: the peak damping ratio and the peak frequency must be > 0");
+    const double s = 2.0 * peak_damping_ratio + cmath::sqrt(4.0 * peak_damping_ratio * peak_damping_ratio + 1.0);
+    return {s * s - 1.0, 1.0 / (peak_omega * s)};
+  }
+};
+
+/// M_T = 1 + sum_i alpha_i (tau_i^2 w^2 + i tau_i w) / (1 + tau_i^2 w^2) (eq. 19).
+constexpr ComplexModulus complex_modulus(std::span<const MaxwellBranch> branches, double omega) noexcept {
+  ComplexModulus m;
+  for (const auto& b : branches) {
+    const auto t = b.modulus_term(omega);
+    m.real += t.real;
+    m.imag += t.imag;
+  }
+  return m;
+}
+
+/// Damping ratio of a spring with these branches at omega (rad/s), eq. 19.
+constexpr double damping_ratio(std::span<const MaxwellBranch> branches, double omega) noexcept {
+  return complex_modulus(branches, omega).damping_ratio();
+}
+
+/// 1 + sum alpha_i: the high-frequency limit of |M_T|, the stiffness increase the branches impose.
+constexpr double stiffness_factor(std::span<const MaxwellBranch> branches) noexcept {
+  double s = 1.0;
+  for (const auto& b : branches) s += b.alpha;
+  return s;
+}
+
+/// Reduction of the critical timestep, 1 / sqrt(1 + sum alpha_i) (eq. 20).
+constexpr double timestep_factor(std::span<const MaxwellBranch> branches) noexcept {
+  return 1.0 / cmath::sqrt(stiffness_factor(branches));
+}
+
+/// Maxwell damping with N branches on every spring, the compile-time policy of the integrator.
+template <int N>
+struct Maxwell {
+  static_assert(N >= 1 && N <= 8, "Maxwell<N>: 1 to 8 branches");
+  static constexpr int num_branches = N;
+  std::array<MaxwellBranch, static_cast<std::size_t>(N)> branches{};
+
+  constexpr ComplexModulus complex_modulus(double omega) const noexcept {
+    return damping::complex_modulus(branches, omega);
+  }
+  constexpr double damping_ratio(double omega) const noexcept { return damping::damping_ratio(branches, omega); }
+  constexpr double timestep_factor() const noexcept { return damping::timestep_factor(branches); }
+};
+
+}  // namespace blockdem::damping

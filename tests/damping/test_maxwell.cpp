@@ -1,0 +1,71 @@
+// Maxwell branches: the closed forms of a single branch (eq. 16-18) against the general evaluator (eq. 19), and the
+// evaluator against an independent std::complex computation of springs in series with dashpots.
+
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <complex>
+
+#include "blockdem/core/units.hpp"
+#include "blockdem/damping/maxwell.hpp"
+
+using namespace blockdem;
+using damping::MaxwellBranch;
+
+TEST_CASE("maxwell: single-branch closed forms (eq. 16-18) agree with the general evaluator (eq. 19)") {
+  for (const MaxwellBranch b : {MaxwellBranch{0.1, 0.01}, MaxwellBranch{0.5, 0.3}, MaxwellBranch{2.0, 1e-4}}) {
+    const std::array<MaxwellBranch, 1> one{b};
+    for (int j = 0; j <= 200; ++j) {
+      const double omega = std::pow(10.0, -2.0 + 8.0 * j / 200.0);
+      CHECK(damping::damping_ratio(one, omega) == doctest::Approx(b.damping_ratio(omega)).epsilon(1e-13));
+      CHECK(damping::complex_modulus(one, omega).magnitude() == doctest::Approx(b.modulus(omega)).epsilon(1e-13));
+    }
+    // eq. 17: the peak of eq. 16 and where it lies.
+    const double w_peak = b.peak_angular_frequency();
+    CHECK(b.damping_ratio(w_peak) == doctest::Approx(b.peak_damping_ratio()).epsilon(1e-14));
+    CHECK(b.damping_ratio(w_peak * 1.01) < b.peak_damping_ratio());
+    CHECK(b.damping_ratio(w_peak / 1.01) < b.peak_damping_ratio());
+    // eq. 18: |M_T| rises monotonically to 1 + alpha.
+    CHECK(b.modulus(1e12 / b.tau) == doctest::Approx(1.0 + b.alpha).epsilon(1e-12));
+    CHECK(b.modulus(1e-12 / b.tau) == doctest::Approx(1.0).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("maxwell: the evaluator agrees with std::complex springs-and-dashpots") {
+  // A spring alpha k in series with a dashpot alpha k tau has complex stiffness alpha k (i w tau) / (1 + i w tau).
+  const std::array<MaxwellBranch, 3> branches{{{0.129, 0.1507}, {0.1006, 0.0241}, {0.1652, 0.00371}}};
+  for (int j = 0; j <= 300; ++j) {
+    const double omega = std::pow(10.0, -1.0 + 5.0 * j / 300.0);
+    std::complex<double> m{1.0, 0.0};
+    for (const auto& b : branches) {
+      const std::complex<double> iwt{0.0, omega * b.tau};
+      m += b.alpha * iwt / (1.0 + iwt);
+    }
+    const auto ours = damping::complex_modulus(branches, omega);
+    CHECK(ours.real == doctest::Approx(m.real()).epsilon(1e-14));
+    CHECK(ours.imag == doctest::Approx(m.imag()).epsilon(1e-14));
+    CHECK(ours.damping_ratio() == doctest::Approx(m.imag() / (2.0 * m.real())).epsilon(1e-14));
+    CHECK(ours.magnitude() == doctest::Approx(std::abs(m)).epsilon(1e-14));
+  }
+}
+
+TEST_CASE("maxwell: from_peak inverts eq. 17, the form 3DEC takes branches in") {
+  for (double zeta : {0.005, 0.03, 0.2}) {
+    for (double f : {0.5, 7.5, 40.0}) {
+      const auto b = MaxwellBranch::from_peak(zeta, angular_frequency(f));
+      CHECK(b.peak_damping_ratio() == doctest::Approx(zeta).epsilon(1e-14));
+      CHECK(frequency_hz(b.peak_angular_frequency()) == doctest::Approx(f).epsilon(1e-14));
+    }
+  }
+  CHECK_THROWS_AS(MaxwellBranch::from_peak(0.0, 1.0), InvalidArgument);
+  CHECK_THROWS_AS(MaxwellBranch::from_peak(0.05, -1.0), InvalidArgument);
+}
+
+TEST_CASE("maxwell: Maxwell<N> policy and the eq. 20 timestep factor") {
+  damping::Maxwell<3> policy{{{{0.1, 0.1}, {0.2, 0.01}, {0.09, 0.001}}}};
+  static_assert(damping::Maxwell<3>::num_branches == 3);
+  CHECK(policy.timestep_factor() == doctest::Approx(1.0 / std::sqrt(1.39)).epsilon(1e-15));
+  CHECK(damping::stiffness_factor(policy.branches) == doctest::Approx(1.39));
+  CHECK(policy.damping_ratio(10.0) == doctest::Approx(policy.complex_modulus(10.0).damping_ratio()));
+}
