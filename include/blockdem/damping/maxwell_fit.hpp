@@ -92,7 +92,7 @@ struct MaxwellFitResult {
   int restarts = 0;            ///< random restarts made
   bool converged = false;      ///< the retained solve met a convergence test
   solve::Status status = solve::Status::max_iterations_reached;
-  double cost = 0.0;           ///< 1/2 sum ((zeta_j - zeta*) / zeta*)^2 at the result
+  double cost = 0.0;           ///< 1/2 sum (zeta_j - zeta*)^2 at the result (eq. 22 / 2)
 
   constexpr std::span<const MaxwellBranch> active() const noexcept {
     return {branch.data(), static_cast<std::size_t>(branches)};
@@ -154,7 +154,7 @@ constexpr MaxwellFitResult evaluate_branches(std::span<const MaxwellBranch> bran
 
 namespace detail {
 
-/// The least-squares problem of eq. 22 with residuals divided by zeta* (same minimiser, scale-free tolerances).
+/// The least-squares problem of eq. 22, residuals zeta(omega_j) - zeta*.
 /// Parameters: x[r] = nu_r (ordering map, eq. 23), x[N + r] = rho_r = log alpha_r.
 template <int N>
 class MaxwellFitProblem {
@@ -171,7 +171,7 @@ class MaxwellFitProblem {
 
   constexpr MaxwellFitProblem(const MaxwellFitOptions& options)
       : omega_(evaluation_frequencies(options.lower_hz, options.upper_hz, options.points)),
-        inverse_target_(1.0 / options.damping_ratio),
+        target_(options.damping_ratio),
         log_lb_(cmath::log(angular_frequency(options.lower_hz / options.centre_margin))),
         log_ub_(cmath::log(angular_frequency(options.upper_hz * options.centre_margin))),
         ordering_(options.ordering) {}
@@ -221,7 +221,7 @@ class MaxwellFitProblem {
       re += ax * x[r];
       im += ax;
     }
-    return 0.5 * im / re * inverse_target_ - 1.0;
+    return 0.5 * im / re - target_;
   }
 
   constexpr double residual(const State& s, int j, Parameters& gradient) const {
@@ -239,8 +239,8 @@ class MaxwellFitProblem {
     const double inv_re = 1.0 / re;
     const double inv_p = 1.0 / p;
     const double zeta = 0.5 * im * inv_re;
-    // d residual = (dIm - 2 zeta dRe) / (2 Re zeta*) with Re, Im the unscaled parts of M_T.
-    const double c = 0.5 * inv_re * inverse_target_;
+    // d residual = (dIm - 2 zeta dRe) / (2 Re) with Re, Im the parts of M_T.
+    const double c = 0.5 * inv_re;
     std::array<double, N> dlogx{};  // d residual / d log(x_r)
     for (int r = 0; r < N; ++r) {
       const double ax = s.alpha[r] * x[r] * e[r] * c;  // alpha x / d_r scaled by P c
@@ -254,7 +254,7 @@ class MaxwellFitProblem {
       for (int r = k; r < N; ++r) g -= dlogx[r] * s.dlogw[r][k];
       gradient[k] = g;
     }
-    return zeta * inverse_target_ - 1.0;
+    return zeta - target_;
   }
 
  private:
@@ -280,7 +280,7 @@ class MaxwellFitProblem {
   }
 
   std::vector<double> omega_;
-  double inverse_target_;
+  double target_;  // residuals are zeta - zeta* as eq. 22 prints them, so its gradient tolerance 1e-9 means the same
   double log_lb_;
   double log_ub_;
   OrderingMap ordering_;
