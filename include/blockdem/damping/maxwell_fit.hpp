@@ -210,32 +210,17 @@ class MaxwellFitProblem {
   // divisions of eq. 19: Re' = P + sum alpha_r x_r^2 e_r, Im' = sum alpha_r x_r e_r, zeta = Im' / (2 Re').
   // P <= (1 + x_max^2)^8 stays far below the overflow for the bands validate() allows.
   constexpr double residual(const State& s, int j) const {
-    const double w = omega_[static_cast<std::size_t>(j)];
-    std::array<double, N> x{};
-    std::array<double, N> e{};
-    const double p = common_denominator(s, w, x, e);
-    double re = p;
-    double im = 0.0;
-    for (int r = 0; r < N; ++r) {
-      const double ax = s.alpha[r] * x[r] * e[r];
-      re += ax * x[r];
-      im += ax;
-    }
-    return 0.5 * im / re - target_;
+    const Row row = evaluate_row(s, j);
+    return 0.5 * row.im / row.re - target_;
   }
 
   constexpr double residual(const State& s, int j, Parameters& gradient) const {
-    const double w = omega_[static_cast<std::size_t>(j)];
-    std::array<double, N> x{};
-    std::array<double, N> e{};
-    const double p = common_denominator(s, w, x, e);
-    double re = p;
-    double im = 0.0;
-    for (int r = 0; r < N; ++r) {
-      const double ax = s.alpha[r] * x[r] * e[r];
-      re += ax * x[r];
-      im += ax;
-    }
+    const Row row = evaluate_row(s, j);
+    const auto& x = row.x;
+    const auto& e = row.e;
+    const double re = row.re;
+    const double im = row.im;
+    const double p = row.p;
     const double inv_re = 1.0 / re;
     const double inv_p = 1.0 / p;
     const double zeta = 0.5 * im * inv_re;
@@ -258,6 +243,27 @@ class MaxwellFitProblem {
   }
 
  private:
+  /// One row: x_r = tau_r w_j, e_r = prod_{k != r} (1 + x_k^2), P = prod (1 + x_k^2), and P Re(M_T), P Im(M_T).
+  struct Row {
+    std::array<double, N> x{};
+    std::array<double, N> e{};
+    double p = 1.0;
+    double re = 1.0;
+    double im = 0.0;
+  };
+
+  constexpr Row evaluate_row(const State& s, int j) const {
+    Row row;
+    row.p = common_denominator(s, omega_[static_cast<std::size_t>(j)], row.x, row.e);
+    row.re = row.p;
+    for (int r = 0; r < N; ++r) {
+      const double ax = s.alpha[r] * row.x[r] * row.e[r];
+      row.re += ax * row.x[r];
+      row.im += ax;
+    }
+    return row;
+  }
+
   /// x_r = tau_r w, e_r = prod_{k != r} (1 + x_k^2) by prefix and suffix products; returns P = prod (1 + x_k^2).
   static constexpr double common_denominator(const State& s, double w, std::array<double, N>& x,
                                              std::array<double, N>& e) {
