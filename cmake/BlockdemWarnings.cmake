@@ -10,3 +10,14 @@ function(blockdem_target_warnings target)
     target_compile_options(${target} PRIVATE /W4 $<$<BOOL:${BLOCKDEM_WARNINGS_AS_ERRORS}>:/WX>)
   endif()
 endfunction()
+
+# OpenMP for blockdem's own programs and tests: the library's loops carry `omp parallel for` pragmas and use
+# OpenMP when the consumer compiles with it. Without OpenMP the pragmas are ignored (and not warned about).
+find_package(OpenMP QUIET)
+function(blockdem_target_openmp target)
+  if(OpenMP_CXX_FOUND)
+    target_link_libraries(${target} PRIVATE OpenMP::OpenMP_CXX)
+  elseif(CMAKE_CXX_COMPILER_ID MATCHES "GNU|Clang")
+    target_compile_options(${target} PRIVATE -Wno-unknown-pragmas)
+  endif()
+endfunction()

@@ -2,6 +2,7 @@
 // Mass-proportional viscous damping, the C = alpha M half of Rayleigh damping (paper eq. 9-10).
 
 #include "blockdem/core/units.hpp"
+#include "blockdem/damping/concepts.hpp"
 
 namespace blockdem::damping {
 
@@ -17,6 +18,17 @@ struct MassProportional {
 
   /// zeta(omega) = alpha / (2 omega), eq. 10 with beta = 0; omega in rad/s.
   constexpr double damping_ratio(double omega) const noexcept { return alpha / (2.0 * omega); }
+
+  // DampingPolicy: acts on every degree of freedom (translations and rotations), not on the springs.
+  using ContactState = NoState;
+  constexpr double spring_stress(ContactState&, double, double, double, bool, double&) const noexcept { return 0.0; }
+  constexpr double velocity_update(double v, double force, double mass, double dt, double& dissipated) const noexcept {
+    return mass_damped_velocity_update(alpha, v, force, mass, dt, dissipated);
+  }
+  /// Mass-proportional damping at mid-step velocities does not lower the critical timestep.
+  constexpr double timestep_factor(double) const noexcept { return 1.0; }
 };
+
+static_assert(DampingPolicy<MassProportional>);
 
 }  // namespace blockdem::damping

@@ -3,11 +3,13 @@
 // tetrahedron). Branch i adds a spring alpha_i k in series with a dashpot of relaxation time tau_i.
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <span>
 
 #include "blockdem/core/constexpr_math.hpp"
 #include "blockdem/core/error.hpp"
+#include "blockdem/damping/concepts.hpp"
 
 namespace blockdem::damping {
 
@@ -97,11 +99,57 @@ struct Maxwell {
   static constexpr int num_branches = N;
   std::array<MaxwellBranch, static_cast<std::size_t>(N)> branches{};
 
+  constexpr Maxwell() = default;
+  constexpr explicit Maxwell(const std::array<MaxwellBranch, static_cast<std::size_t>(N)>& b) : branches(b) {}
+
   constexpr ComplexModulus complex_modulus(double omega) const noexcept {
     return damping::complex_modulus(branches, omega);
   }
   constexpr double damping_ratio(double omega) const noexcept { return damping::damping_ratio(branches, omega); }
   constexpr double timestep_factor() const noexcept { return damping::timestep_factor(branches); }
+
+  // DampingPolicy: N branches in parallel with every spring. Branch i under a rate du/dt constant over the step
+  // follows s_i' = alpha_i k du/dt - s_i / tau_i exactly: s_i <- s_i e^(-dt/tau_i) + alpha_i k tau_i (1 - e^(-dt/tau_i)) du/dt.
+  using ContactState = std::array<double, static_cast<std::size_t>(N)>;  // branch stresses, Pa
+
+  /// Precomputes e^(-dt/tau_i) and alpha_i tau_i (1 - e^(-dt/tau_i)) / dt for the timestep dt (s).
+  void prepare(double dt) noexcept {
+    for (int i = 0; i < N; ++i) {
+      const auto& b = branches[static_cast<std::size_t>(i)];
+      decay_[static_cast<std::size_t>(i)] = std::exp(-dt / b.tau);
+      gain_[static_cast<std::size_t>(i)] = b.alpha * b.tau * (1.0 - decay_[static_cast<std::size_t>(i)]) / dt;
+      inverse_alpha_[static_cast<std::size_t>(i)] = 1.0 / b.alpha;
+    }
+  }
+
+  double spring_stress(ContactState& s, double stiffness, double du, double, bool active,
+                       double& dissipated) const noexcept {
+    double total = 0.0;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
+      const double old = s[i];
+      const double updated = active ? old * decay_[i] + gain_[i] * stiffness * du : 0.0;
+      // Work done on the branch minus the change of its spring energy: what the dashpot dissipated.
+      dissipated += 0.5 * (old + updated) * du - 0.5 * (updated * updated - old * old) * inverse_alpha_[i] / stiffness;
+      s[i] = updated;
+      total += updated;
+    }
+    return total;
+  }
+  constexpr double velocity_update(double v, double force, double mass, double dt, double&) const noexcept {
+    return undamped_velocity_update(v, force, mass, dt);
+  }
+  constexpr double timestep_factor(double) const noexcept { return timestep_factor(); }
+  /// Energy in the branch springs, sum s_i^2 / (2 alpha_i k), J/m^2.
+  double stored_energy(const ContactState& s, double stiffness) const noexcept {
+    double e = 0.0;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) e += 0.5 * s[i] * s[i] * inverse_alpha_[i] / stiffness;
+    return e;
+  }
+
+ private:
+  std::array<double, static_cast<std::size_t>(N)> decay_{};
+  std::array<double, static_cast<std::size_t>(N)> gain_{};
+  std::array<double, static_cast<std::size_t>(N)> inverse_alpha_{};
 };
 
 }  // namespace blockdem::damping

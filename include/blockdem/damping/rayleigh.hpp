@@ -4,6 +4,7 @@
 #include "blockdem/core/constexpr_math.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/units.hpp"
+#include "blockdem/damping/concepts.hpp"
 
 namespace blockdem::damping {
 
@@ -32,6 +33,21 @@ struct Rayleigh {
     const double z = 0.5 * beta * omega_max;
     return cmath::sqrt(1.0 + z * z) - z;
   }
+
+  // DampingPolicy: the mass part on every degree of freedom, the stiffness part as dashpots on the springs.
+  using ContactState = NoState;
+  constexpr double spring_stress(ContactState&, double stiffness, double du, double dt, bool active,
+                                 double& dissipated) const noexcept {
+    if (!active || dt <= 0.0) return 0.0;
+    const double stress = beta * stiffness * du / dt;
+    dissipated += stress * du;
+    return stress;
+  }
+  constexpr double velocity_update(double v, double force, double mass, double dt, double& dissipated) const noexcept {
+    return mass_damped_velocity_update(alpha, v, force, mass, dt, dissipated);
+  }
 };
+
+static_assert(DampingPolicy<Rayleigh>);
 
 }  // namespace blockdem::damping

@@ -3,6 +3,7 @@
 
 #include "blockdem/core/constexpr_math.hpp"
 #include "blockdem/core/units.hpp"
+#include "blockdem/damping/concepts.hpp"
 
 namespace blockdem::damping {
 
@@ -23,6 +24,22 @@ struct StiffnessProportional {
     const double z = damping_ratio(omega_max);
     return cmath::sqrt(1.0 + z * z) - z;
   }
+
+  // DampingPolicy: a dashpot beta k on each spring, at the rate of the last step (the lagged velocity for which
+  // eq. 11 is the exact stability limit of the central-difference scheme).
+  using ContactState = NoState;
+  constexpr double spring_stress(ContactState&, double stiffness, double du, double dt, bool active,
+                                 double& dissipated) const noexcept {
+    if (!active || dt <= 0.0) return 0.0;
+    const double stress = beta * stiffness * du / dt;
+    dissipated += stress * du;
+    return stress;
+  }
+  constexpr double velocity_update(double v, double force, double mass, double dt, double&) const noexcept {
+    return undamped_velocity_update(v, force, mass, dt);
+  }
 };
+
+static_assert(DampingPolicy<StiffnessProportional>);
 
 }  // namespace blockdem::damping

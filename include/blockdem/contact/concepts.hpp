@@ -1,0 +1,40 @@
+#pragma once
+// The ContactLaw concept: the pointwise joint law of one contact point, in incremental form as 3DEC uses it.
+
+#include <array>
+#include <concepts>
+
+namespace blockdem::contact {
+
+/// Shear components along the contact point's tangent directions t1, t2.
+using Shear = std::array<double, 2>;
+
+/// What a law returns for one step of one contact point. Sign conventions: the normal n points from block A to
+/// block B; the gap is positive when the joint is open; `normal_stress` is positive in compression; `shear_stress`
+/// is the traction A exerts on B along t1, t2. The traction on B is normal_stress n + shear_stress_1 t1 + ..., on A
+/// its opposite.
+struct Response {
+  double normal_stress = 0;       // Pa, compression positive
+  Shear shear_stress{0, 0};       // Pa
+  double dissipated = 0;          // J/m^2 dissipated by slip (and softening) during this step
+};
+
+/// A joint law: `Parameters` (validated on construction: throws InvalidArgument naming the field and range),
+/// `History` (per contact point; `gap` in m, positive open), and static functions
+/// - `update(params, history, du_normal, du_shear) -> Response`: du_normal is the increment of the gap (m),
+///   du_shear the increment of B's displacement relative to A along t1, t2 (m); updates the history;
+/// - `normal_stiffness(params)`, `shear_stiffness(params)`: the elastic stiffnesses, Pa/m, for the timestep;
+/// - `damping_active(params, history)`: false once the joint has failed or while it is open, so that a dashpot
+///   never acts across an open joint (the damping policy releases its stresses);
+/// - `stored_energy(params, history)`: elastic energy per area in the joint springs, J/m^2.
+template <class L>
+concept ContactLaw = requires(const typename L::Parameters& p, typename L::History& h, double du, Shear ds) {
+  { L::update(p, h, du, ds) } noexcept -> std::same_as<Response>;
+  { L::normal_stiffness(p) } noexcept -> std::convertible_to<double>;
+  { L::shear_stiffness(p) } noexcept -> std::convertible_to<double>;
+  { L::damping_active(p, h) } noexcept -> std::convertible_to<bool>;
+  { L::stored_energy(p, h) } noexcept -> std::convertible_to<double>;
+  { h.gap } -> std::convertible_to<double>;
+};
+
+}  // namespace blockdem::contact

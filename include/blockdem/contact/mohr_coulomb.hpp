@@ -1,0 +1,98 @@
+#pragma once
+// The Mohr-Coulomb joint law (paper Fig. 5B): tension cut-off f_t, shear strength c + sigma tan(phi); at the first
+// failure in tension or shear, tension and cohesion drop to residual values (default 0) and friction to its
+// residual angle. Without tensile strength the joint carries no tension once open.
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+#include "blockdem/contact/concepts.hpp"
+#include "blockdem/core/error.hpp"
+
+namespace blockdem::contact {
+
+struct MohrCoulomb {
+  struct Parameters {
+    double normal_stiffness = 0;   // Pa/m
+    double shear_stiffness = 0;    // Pa/m
+    double tensile_strength = 0;   // Pa
+    double cohesion = 0;           // Pa
+    double friction_angle = 0;     // rad
+    double residual_tensile_strength = 0;  // Pa
+    double residual_cohesion = 0;          // Pa
+    double residual_friction_angle = 0;    // rad
+    // Derived once here, not in the loop.
+    double tan_friction = 0;
+    double tan_residual_friction = 0;
+
+    Parameters() = default;
+    bool operator==(const Parameters&) const = default;
+    /// Angles in radians. Residual friction defaults to the peak friction angle.
+    Parameters(double kn, double ks, double ft, double c, double phi, double ft_res = 0, double c_res = 0,
+               double phi_res = -1)
+        : normal_stiffness(kn), shear_stiffness(ks), tensile_strength(ft), cohesion(c), friction_angle(phi),
+          residual_tensile_strength(ft_res), residual_cohesion(c_res), residual_friction_angle(phi_res < 0 ? phi : phi_res) {
+      auto check = [](bool ok, const std::string& what) {
+        if (!ok) throw InvalidArgument("mohr-coulomb joint: " + what);
+      };
+      check(kn > 0 && std::isfinite(kn), "normal stiffness must be > 0 Pa/m, got " + std::to_string(kn));
+      check(ks > 0 && std::isfinite(ks), "shear stiffness must be > 0 Pa/m, got " + std::to_string(ks));
+      check(ft >= 0, "tensile strength must be >= 0 Pa, got " + std::to_string(ft));
+      check(c >= 0, "cohesion must be >= 0 Pa, got " + std::to_string(c));
+      check(phi >= 0 && phi < 1.5707963267948966, "friction angle must be in [0, 90) degrees");
+      check(ft_res >= 0 && ft_res <= ft, "residual tensile strength must be in [0, tensile strength]");
+      check(c_res >= 0 && c_res <= c, "residual cohesion must be in [0, cohesion]");
+      check(residual_friction_angle >= 0 && residual_friction_angle < 1.5707963267948966,
+            "residual friction angle must be in [0, 90) degrees");
+      tan_friction = std::tan(friction_angle);
+      tan_residual_friction = std::tan(residual_friction_angle);
+    }
+  };
+  struct History {
+    double gap = 0;        // m, positive open
+    Shear shear{0, 0};     // Pa
+    double normal = 0;     // Pa, compression positive
+    std::uint8_t failed = 0;
+  };
+
+  static Response update(const Parameters& p, History& h, double du_normal, Shear du_shear) noexcept {
+    h.gap += du_normal;
+    const bool failed = h.failed != 0;
+    const double tension = failed ? p.residual_tensile_strength : p.tensile_strength;
+    double sigma = -p.normal_stiffness * h.gap;
+    if (sigma < -tension) {  // tension cut-off
+      if (!failed && p.tensile_strength > 0) h.failed = 1;
+      sigma = -(h.failed ? p.residual_tensile_strength : tension);
+    }
+    h.normal = sigma;
+    Shear tau{h.shear[0] - p.shear_stiffness * du_shear[0], h.shear[1] - p.shear_stiffness * du_shear[1]};
+    const bool now_failed = h.failed != 0;
+    const double limit = std::fmax(0.0, (now_failed ? p.residual_cohesion : p.cohesion) +
+                                            std::fmax(sigma, 0.0) * (now_failed ? p.tan_residual_friction : p.tan_friction));
+    const double magnitude = std::sqrt(tau[0] * tau[0] + tau[1] * tau[1]);
+    double dissipated = 0.0;
+    if (magnitude > limit) {  // slip: return to the Coulomb limit along the trial direction
+      const double scale = magnitude > 0 ? limit / magnitude : 0.0;
+      dissipated = limit * (magnitude - limit) / p.shear_stiffness;  // limit times the plastic slip
+      tau = {tau[0] * scale, tau[1] * scale};
+      if (p.cohesion > 0 || p.tensile_strength > 0) h.failed = 1;
+    }
+    h.shear = tau;
+    return {sigma, tau, dissipated};
+  }
+  static constexpr double normal_stiffness(const Parameters& p) noexcept { return p.normal_stiffness; }
+  static constexpr double shear_stiffness(const Parameters& p) noexcept { return p.shear_stiffness; }
+  /// Off once the bond has failed, and while the joint is open (a gap without tensile strength to bridge it).
+  static constexpr bool damping_active(const Parameters& p, const History& h) noexcept {
+    return h.failed == 0 && (h.gap <= 0 || p.tensile_strength > 0);
+  }
+  static constexpr double stored_energy(const Parameters& p, const History& h) noexcept {
+    return 0.5 * h.normal * h.normal / p.normal_stiffness +
+           0.5 * (h.shear[0] * h.shear[0] + h.shear[1] * h.shear[1]) / p.shear_stiffness;
+  }
+};
+
+static_assert(ContactLaw<MohrCoulomb>);
+
+}  // namespace blockdem::contact

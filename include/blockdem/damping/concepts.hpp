@@ -1,0 +1,44 @@
+#pragma once
+// The DampingPolicy concept: what the fused explicit loop asks of a viscous damping scheme.
+
+#include <concepts>
+
+namespace blockdem::damping {
+
+/// A damping policy provides
+/// - `ContactState`: per contact point and spring direction (normal, shear 1, shear 2) state, e.g. the stresses of
+///   the Maxwell branches; an empty struct if the policy does not act on springs;
+/// - `spring_stress(state, stiffness, du, dt, active, dissipated) -> double`: the viscous stress (Pa) the policy adds
+///   to a spring of stiffness (Pa/m) whose elongation grew by du (m) during the step dt (s); with active == false
+///   (joint failed or open) it releases its state and returns 0; adds the energy it dissipated (J/m^2) to
+///   `dissipated`;
+/// - `velocity_update(v, force, mass, dt, dissipated) -> double`: the central-difference update of one degree of
+///   freedom, velocity v (m/s or rad/s) at the half step, force (N or N m), mass (kg or kg m^2); adds the energy its
+///   damping force dissipated (J) to `dissipated`;
+/// - `timestep_factor(omega_max) -> double`: the reduction of the critical timestep 2 / omega_max (eq. 11, eq. 20).
+template <class D>
+concept DampingPolicy = requires(const D& d, typename D::ContactState& s, double x, bool active, double& e) {
+  { d.spring_stress(s, x, x, x, active, e) } noexcept -> std::same_as<double>;
+  { d.velocity_update(x, x, x, x, e) } noexcept -> std::same_as<double>;
+  { d.timestep_factor(x) } noexcept -> std::convertible_to<double>;
+};
+
+/// Per-spring state of the policies that keep none.
+struct NoState {};
+
+/// The plain central-difference velocity update, v+ = v- + dt F / m.
+constexpr double undamped_velocity_update(double v, double force, double mass, double dt) noexcept {
+  return v + dt * force / mass;
+}
+
+/// v+ = ((1 - a dt/2) v- + dt F/m) / (1 + a dt/2): the damping force -a m v at the mid-step velocity (v- + v+)/2.
+constexpr double mass_damped_velocity_update(double a, double v, double force, double mass, double dt,
+                                             double& dissipated) noexcept {
+  const double h = 0.5 * a * dt;
+  const double v_new = ((1.0 - h) * v + dt * force / mass) / (1.0 + h);
+  const double v_mid = 0.5 * (v + v_new);
+  dissipated += a * mass * v_mid * v_mid * dt;
+  return v_new;
+}
+
+}  // namespace blockdem::damping

@@ -1,0 +1,26 @@
+#pragma once
+// Cundall's local damping for static equilibrium: a force -c |F| sign(v) on every degree of freedom. Not viscous,
+// not for dynamics: it brings a model to rest under gravity before a dynamic run.
+
+#include "blockdem/damping/concepts.hpp"
+
+namespace blockdem::damping {
+
+struct Local {
+  double coefficient = 0.8;  // 3DEC's default
+  using ContactState = NoState;
+  constexpr double spring_stress(ContactState&, double, double, double, bool, double&) const noexcept { return 0.0; }
+  constexpr double velocity_update(double v, double force, double mass, double dt, double& dissipated) const noexcept {
+    const double magnitude = force < 0 ? -force : force;
+    const double damping_force = v > 0 ? -coefficient * magnitude : (v < 0 ? coefficient * magnitude : 0.0);
+    const double v_new = v + dt * (force + damping_force) / mass;
+    const double work = damping_force * 0.5 * (v + v_new) * dt;
+    dissipated -= work;  // the damping force opposes the motion: its work is negative
+    return v_new;
+  }
+  constexpr double timestep_factor(double) const noexcept { return 1.0; }
+};
+
+static_assert(DampingPolicy<Local>);
+
+}  // namespace blockdem::damping

@@ -1,0 +1,303 @@
+#pragma once
+// Automatic detection of face-to-face contact between convex blocks (the common-plane idea of Cundall 1988, paper
+// Sect. 3.1): a sweep-and-prune broad phase over bounding boxes; for each close pair, the common-plane normal is the
+// separating axis of least penetration among the face normals of both blocks; the best-aligned face of each block
+// is projected onto that plane, the two are clipped to their overlap polygon, and contact points (CPs) are placed
+// at its vertices, subdivided by a grid so that no CP carries more than a given area. Each CP gets its tributary
+// area, a normal from A to B, two shear directions and its gap.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "blockdem/core/error.hpp"
+#include "blockdem/core/types.hpp"
+#include "blockdem/geometry/convex_polyhedron.hpp"
+#include "blockdem/model/model.hpp"
+
+namespace blockdem::model {
+
+struct ContactSettings {
+  double tolerance = 1e-3;            ///< m: faces closer than this are in contact; also the largest overlap allowed at the start
+  double max_contact_point_area = 0;  ///< m^2: subdivide overlaps so that no CP carries more (0: CPs at the polygon vertices only)
+  double max_normal_angle = 0.35;     ///< rad: faces tilted more than this from the common plane are not in contact (20 deg)
+  double redetection_distance = 0;    ///< m: detect again once a block moved this far (0: half the tolerance)
+  int redetection_check_interval = 10;  ///< steps between checks of the distance moved
+
+  void validate() const {
+    if (!(tolerance > 0)) throw InvalidArgument("contact settings: tolerance must be > 0 m");
+    if (!(max_contact_point_area >= 0)) throw InvalidArgument("contact settings: max contact point area must be >= 0 m^2");
+    if (!(max_normal_angle > 0 && max_normal_angle < 1.5)) throw InvalidArgument("contact settings: max normal angle must be in (0, 1.5) rad");
+    if (!(redetection_distance >= 0)) throw InvalidArgument("contact settings: redetection distance must be >= 0 m");
+    if (redetection_check_interval < 1) throw InvalidArgument("contact settings: redetection check interval must be >= 1 step");
+  }
+  double redetection() const { return redetection_distance > 0 ? redetection_distance : 0.5 * tolerance; }
+};
+
+/// One contact point found by the detection, in world coordinates.
+struct ContactCandidate {
+  std::size_t a = 0;  // block A (the lower index)
+  std::size_t b = 0;  // block B
+  Vec3 position;      // m, on the common plane, midway between the two faces
+  Vec3 normal;        // from A to B
+  Vec3 tangent;       // first shear direction t1; t2 = normal x t1
+  double area = 0;    // m^2, tributary area
+  double gap = 0;     // m, positive open, negative overlap
+};
+
+namespace detail {
+
+using Point2 = std::array<double, 2>;
+using Polygon2 = std::vector<Point2>;
+
+inline double cross2(const Point2& o, const Point2& a, const Point2& b) {
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+inline double polygon_area(const Polygon2& p) {
+  double s = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const auto& u = p[i];
+    const auto& v = p[(i + 1) % p.size()];
+    s += u[0] * v[1] - v[0] * u[1];
+  }
+  return 0.5 * s;
+}
+
+inline Point2 polygon_centroid(const Polygon2& p) {
+  Point2 c{0, 0};
+  for (const auto& v : p) {
+    c[0] += v[0];
+    c[1] += v[1];
+  }
+  return {c[0] / static_cast<double>(p.size()), c[1] / static_cast<double>(p.size())};
+}
+
+/// Sutherland-Hodgman: the part of `subject` inside the convex counter-clockwise polygon `clip`.
+inline Polygon2 clip_convex(Polygon2 subject, const Polygon2& clip) {
+  for (std::size_t e = 0; e < clip.size() && !subject.empty(); ++e) {
+    const Point2& c0 = clip[e];
+    const Point2& c1 = clip[(e + 1) % clip.size()];
+    Polygon2 input = std::move(subject);
+    subject.clear();
+    for (std::size_t i = 0; i < input.size(); ++i) {
+      const Point2& p = input[i];
+      const Point2& q = input[(i + 1) % input.size()];
+      const double dp = cross2(c0, c1, p);
+      const double dq = cross2(c0, c1, q);
+      if (dp >= 0) subject.push_back(p);
+      if ((dp >= 0) != (dq >= 0)) {
+        const double t = dp / (dp - dq);
+        subject.push_back({p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])});
+      }
+    }
+  }
+  // Drop the repeated and collinear points that clipping along (nearly) common edges leaves behind.
+  double scale = 0;
+  for (const auto& v : clip) scale = std::max({scale, std::abs(v[0] - clip[0][0]), std::abs(v[1] - clip[0][1])});
+  const double eps = 1e-9 * scale;
+  bool changed = true;
+  while (changed && subject.size() >= 3) {
+    changed = false;
+    for (std::size_t i = 0; i < subject.size() && subject.size() >= 3; ++i) {
+      const Point2& prev = subject[(i + subject.size() - 1) % subject.size()];
+      const Point2& v = subject[i];
+      const Point2& next = subject[(i + 1) % subject.size()];
+      const bool repeated = std::hypot(v[0] - prev[0], v[1] - prev[1]) <= eps;
+      const bool collinear = std::abs(cross2(prev, v, next)) <= eps * scale;
+      if (repeated || collinear) {
+        subject.erase(subject.begin() + static_cast<std::ptrdiff_t>(i));
+        changed = true;
+        break;
+      }
+    }
+  }
+  return subject;
+}
+
+/// Contact points of an overlap polygon with their tributary areas: each cell (the polygon itself, or its
+/// intersection with the squares of a grid of side h) is fanned from its centroid, and each fan triangle gives
+/// half its area to each of its two polygon vertices. Coincident vertices of neighbouring cells are merged.
+inline std::vector<std::pair<Point2, double>> tributary_points(const Polygon2& polygon, double max_area) {
+  std::vector<Polygon2> cells;
+  const double area = polygon_area(polygon);
+  if (max_area > 0 && area / static_cast<double>(polygon.size()) > max_area) {
+    const double h = std::sqrt(max_area);
+    double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+    for (const auto& v : polygon)
+      for (int k = 0; k < 2; ++k) {
+        lo[k] = std::min(lo[k], v[k]);
+        hi[k] = std::max(hi[k], v[k]);
+      }
+    const int nx = std::max(1, static_cast<int>(std::ceil((hi[0] - lo[0]) / h - 1e-9)));
+    const int ny = std::max(1, static_cast<int>(std::ceil((hi[1] - lo[1]) / h - 1e-9)));
+    const double hx = (hi[0] - lo[0]) / nx;
+    const double hy = (hi[1] - lo[1]) / ny;
+    for (int i = 0; i < nx; ++i)
+      for (int j = 0; j < ny; ++j) {
+        const double x0 = lo[0] + i * hx, x1 = lo[0] + (i + 1) * hx;
+        const double y0 = lo[1] + j * hy, y1 = lo[1] + (j + 1) * hy;
+        auto cell = clip_convex(polygon, {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
+        if (cell.size() >= 3 && polygon_area(cell) > 1e-12 * area) cells.push_back(std::move(cell));
+      }
+  } else {
+    cells.push_back(polygon);
+  }
+  const double merge = 1e-9 * std::sqrt(std::max(area, 1e-300));
+  std::vector<std::pair<Point2, double>> points;
+  for (const auto& cell : cells) {
+    const Point2 c = polygon_centroid(cell);
+    for (std::size_t i = 0; i < cell.size(); ++i) {
+      const Point2& p = cell[i];
+      const Point2& q = cell[(i + 1) % cell.size()];
+      const double half = 0.25 * std::abs(cross2(c, p, q));  // half of the fan triangle (c, p, q)
+      for (const Point2* v : {&p, &q}) {
+        auto found = std::find_if(points.begin(), points.end(), [&](const auto& e) {
+          return std::abs(e.first[0] - (*v)[0]) <= merge && std::abs(e.first[1] - (*v)[1]) <= merge;
+        });
+        if (found == points.end())
+          points.push_back({*v, half});
+        else
+          found->second += half;
+      }
+    }
+  }
+  return points;
+}
+
+struct FacePlanes {
+  std::vector<Vec3> normal;
+  std::vector<Vec3> point;
+};
+
+inline FacePlanes face_planes(const geometry::ConvexPolyhedron& p) {
+  FacePlanes f;
+  for (std::size_t i = 0; i < p.faces.size(); ++i) {
+    f.normal.push_back(p.face_normal(i));
+    f.point.push_back(p.face_centroid(i));
+  }
+  return f;
+}
+
+/// Largest separation of `other` from the face planes of `p`: max over faces of min over vertices of other.
+inline std::pair<double, std::size_t> max_face_separation(const FacePlanes& p, const geometry::ConvexPolyhedron& other) {
+  double best = -1e300;
+  std::size_t best_face = 0;
+  for (std::size_t f = 0; f < p.normal.size(); ++f) {
+    double sep = 1e300;
+    for (const auto& v : other.vertices) sep = std::min(sep, p.normal[f].dot(v - p.point[f]));
+    if (sep > best) {
+      best = sep;
+      best_face = f;
+    }
+  }
+  return {best, best_face};
+}
+
+inline std::size_t best_aligned_face(const FacePlanes& p, const Vec3& direction) {
+  std::size_t best = 0;
+  double alignment = -2;
+  for (std::size_t f = 0; f < p.normal.size(); ++f) {
+    const double a = p.normal[f].dot(direction);
+    if (a > alignment) {
+      alignment = a;
+      best = f;
+    }
+  }
+  return best;
+}
+
+}  // namespace detail
+
+/// Separation of two blocks: the largest gap along a face normal of either (negative: penetration depth).
+struct PairSeparation {
+  double separation = 0;  // m
+  Vec3 normal;            // from A to B
+};
+
+/// All contact points between the blocks in `bodies`. Pairs of blocks that are both fixed or base are skipped.
+/// `deepest` receives the pair with the largest overlap (most negative separation), for the start-up check.
+inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, const ContactSettings& settings,
+                                                     std::pair<std::pair<std::size_t, std::size_t>, double>* deepest = nullptr) {
+  const std::size_t n = bodies.size();
+  std::vector<geometry::ConvexPolyhedron> world(n);
+  std::vector<detail::FacePlanes> planes(n);
+  std::vector<Vec3> lo(n), hi(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    world[i] = bodies.world_shape(i);
+    planes[i] = detail::face_planes(world[i]);
+    lo[i] = Vec3::Constant(1e300);
+    hi[i] = Vec3::Constant(-1e300);
+    for (const auto& v : world[i].vertices) {
+      lo[i] = lo[i].cwiseMin(v);
+      hi[i] = hi[i].cwiseMax(v);
+    }
+    lo[i].array() -= settings.tolerance;
+    hi[i].array() += settings.tolerance;
+  }
+  // Sweep and prune along x.
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lo[a].x() < lo[b].x(); });
+  const double cos_max = std::cos(settings.max_normal_angle);
+  std::vector<ContactCandidate> out;
+  if (deepest) *deepest = {{0, 0}, 0.0};
+  for (std::size_t u = 0; u < n; ++u) {
+    for (std::size_t w = u + 1; w < n && lo[order[w]].x() <= hi[order[u]].x(); ++w) {
+      std::size_t a = order[u], b = order[w];
+      if (a > b) std::swap(a, b);
+      if (bodies.motion[a] != Motion::free && bodies.motion[b] != Motion::free) continue;
+      if ((lo[a].array() > hi[b].array()).any() || (lo[b].array() > hi[a].array()).any()) continue;
+      const auto [sep_a, face_a] = detail::max_face_separation(planes[a], world[b]);
+      const auto [sep_b, face_b] = detail::max_face_separation(planes[b], world[a]);
+      const double separation = std::max(sep_a, sep_b);
+      if (separation > settings.tolerance) continue;
+      if (deepest && separation < deepest->second) *deepest = {{a, b}, separation};
+      const Vec3 n_common = sep_a >= sep_b ? planes[a].normal[face_a] : Vec3(-planes[b].normal[face_b]);
+      const std::size_t fa = detail::best_aligned_face(planes[a], n_common);
+      const std::size_t fb = detail::best_aligned_face(planes[b], -n_common);
+      if (planes[a].normal[fa].dot(n_common) < cos_max || -planes[b].normal[fb].dot(n_common) < cos_max) continue;
+
+      // 2D frame on the common plane: t1 along the longest edge of A's face.
+      const auto& face = world[a].faces[fa];
+      Vec3 t1 = Vec3::Zero();
+      for (std::size_t i = 0; i < face.size(); ++i) {
+        Vec3 e = world[a].vertices[static_cast<std::size_t>(face[(i + 1) % face.size()])] -
+                 world[a].vertices[static_cast<std::size_t>(face[i])];
+        e -= e.dot(n_common) * n_common;
+        if (e.squaredNorm() > t1.squaredNorm()) t1 = e;
+      }
+      t1.normalize();
+      const Vec3 t2 = n_common.cross(t1);
+      const Vec3 origin = planes[a].point[fa];
+      auto project = [&](const geometry::ConvexPolyhedron& p, std::size_t f, bool reverse) {
+        detail::Polygon2 poly;
+        for (int v : p.faces[f]) {
+          const Vec3 d = p.vertices[static_cast<std::size_t>(v)] - origin;
+          poly.push_back({d.dot(t1), d.dot(t2)});
+        }
+        if (reverse) std::reverse(poly.begin(), poly.end());
+        return poly;
+      };
+      const auto overlap = detail::clip_convex(project(world[a], fa, false), project(world[b], fb, true));
+      if (overlap.size() < 3 || detail::polygon_area(overlap) <= 1e-12 * world[a].face_area(fa)) continue;
+
+      const Vec3 na = planes[a].normal[fa], nb = planes[b].normal[fb];
+      const Vec3 ca = planes[a].point[fa], cb = planes[b].point[fb];
+      for (const auto& [uv, area] : detail::tributary_points(overlap, settings.max_contact_point_area)) {
+        const Vec3 p = origin + uv[0] * t1 + uv[1] * t2;
+        const double s_a = na.dot(ca - p) / na.dot(n_common);  // p + s n lies on A's face plane
+        const double s_b = nb.dot(cb - p) / nb.dot(n_common);
+        out.push_back({a, b, p + 0.5 * (s_a + s_b) * n_common, n_common, t1, area, s_b - s_a});
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace blockdem::model

@@ -1,0 +1,176 @@
+// Validation of the explicit integrator with every damping policy on systems with analytical answers
+// (issue 3, tests 1-5). Each test names its reference.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "blockdem/contact/elastic.hpp"
+#include "blockdem/contact/mohr_coulomb.hpp"
+#include "blockdem/core/units.hpp"
+#include "blockdem/damping/local.hpp"
+#include "blockdem/damping/mass_proportional.hpp"
+#include "blockdem/damping/maxwell_fit.hpp"
+#include "blockdem/damping/none.hpp"
+#include "blockdem/damping/rayleigh.hpp"
+#include "blockdem/damping/stiffness_proportional.hpp"
+#include "blockdem/integrate/simulation.hpp"
+#include "fixtures.hpp"
+
+using namespace blockdem;
+
+namespace {
+
+constexpr std::uint8_t vertical_only = model::Fixity::translation_x | model::Fixity::translation_y | model::Fixity::all_rotations;
+
+/// A 1 x 1 x 1 m block of 2000 kg on 4 elastic CPs of 0.25 m^2, vertical translation only, tuned to f_hz:
+/// omega = sqrt(k_n A / m).
+template <class Damping>
+test::Decay vibrate(Damping damping, double f_hz, double cycles = 40, double steps_per_cycle = 400) {
+  auto s = test::block_on_base(1, 1, 1);
+  s.model.gravity = Vec3::Zero();
+  s.model.bodies.fixity[s.block] = vertical_only;
+  s.model.bodies.velocity[s.block] = Vec3(0, 0, 1e-3);
+  const double omega = two_pi * f_hz;
+  const double kn = 2000.0 * omega * omega;
+  Simulation<Damping, contact::Elastic> sim(s.model, damping, [&](int, int) { return contact::Elastic::Parameters(kn, kn); });
+  sim.set_timestep(1.0 / (f_hz * steps_per_cycle));
+  std::vector<double> t, z;
+  const double z0 = s.model.bodies.position[s.block].z();
+  const auto n = static_cast<long long>(cycles * steps_per_cycle);
+  for (long long i = 0; i < n; ++i) {
+    sim.step();
+    t.push_back(sim.time());
+    z.push_back(s.model.bodies.position[s.block].z() - z0);
+  }
+  return test::measure_decay(t, z);
+}
+
+}  // namespace
+
+TEST_CASE("simulation: a block on an elastic joint vibrates at sqrt(k A / m) (SDOF, analytical)") {
+  for (double f : {0.5, 3.0, 20.0, 100.0}) {
+    const auto d = vibrate(damping::None{}, f);
+    CAPTURE(f);
+    CHECK(d.frequency_hz == doctest::Approx(f).epsilon(0.005));
+    CHECK(d.damping_ratio < 1e-4);
+  }
+}
+
+TEST_CASE("simulation: the damping ratio measured from free decay matches each policy's zeta(f) within 5 %") {
+  const double frequencies[] = {0.5, 2.0, 8.0, 30.0, 100.0};
+  SUBCASE("mass-proportional, 2 % at 5 Hz (eq. 10 with beta = 0)") {
+    const auto policy = damping::MassProportional::from_damping_ratio(0.02, 5.0);
+    for (double f : frequencies) {
+      CAPTURE(f);
+      const auto d = vibrate(policy, f, f < 1 ? 6 : 40);
+      CHECK(d.damping_ratio == doctest::Approx(policy.damping_ratio(two_pi * f)).epsilon(0.05));
+    }
+  }
+  SUBCASE("stiffness-proportional, 2 % at 10 Hz (eq. 10 with alpha = 0)") {
+    const auto policy = damping::StiffnessProportional::from_damping_ratio(0.02, 10.0);
+    for (double f : frequencies) {
+      CAPTURE(f);
+      const auto d = vibrate(policy, f, f > 50 ? 6 : 40);
+      CHECK(d.damping_ratio == doctest::Approx(policy.damping_ratio(two_pi * d.frequency_hz)).epsilon(0.05));
+    }
+  }
+  SUBCASE("Rayleigh, 3 % at 1 and 40 Hz (eq. 10)") {
+    const auto policy = damping::Rayleigh::from_two_frequencies(0.03, 1.0, 0.03, 40.0);
+    for (double f : frequencies) {
+      CAPTURE(f);
+      const auto d = vibrate(policy, f, 10);
+      CHECK(d.damping_ratio == doctest::Approx(policy.damping_ratio(two_pi * d.frequency_hz)).epsilon(0.05));
+    }
+  }
+  SUBCASE("Maxwell<3>, fitted to 4 % over 1-40 Hz (eq. 19 at the measured frequency)") {
+    damping::MaxwellFitOptions options;
+    options.damping_ratio = 0.04;
+    const auto policy = damping::to_policy<3>(damping::fit_maxwell(options));
+    for (double f : frequencies) {
+      CAPTURE(f);
+      const auto d = vibrate(policy, f, 12);
+      CHECK(d.damping_ratio == doctest::Approx(policy.damping_ratio(two_pi * d.frequency_hz)).epsilon(0.05));
+    }
+  }
+}
+
+namespace {
+/// Runs a vertical-only block at `factor` times the predicted critical timestep; returns max |z| / initial peak.
+template <class Damping>
+double growth_at(Damping damping, double factor, long long steps = 100000) {
+  auto s = test::block_on_base(1, 1, 1);
+  s.model.gravity = Vec3::Zero();
+  s.model.bodies.fixity[s.block] = vertical_only;
+  s.model.bodies.velocity[s.block] = Vec3(0, 0, 1e-3);
+  const double omega = 2e5;  // rad/s: well above every Maxwell corner frequency, as in a DEM model (dt ~ 1e-5 s)
+  const double kn = 2000.0 * omega * omega;
+  Simulation<Damping, contact::Elastic> sim(s.model, damping, [&](int, int) { return contact::Elastic::Parameters(kn, kn); });
+  sim.set_timestep(factor * sim.critical_timestep(), TimestepCheck::unchecked);
+  const double z0 = s.model.bodies.position[s.block].z();
+  const double initial = 1e-3 / omega;
+  double largest = 0;
+  for (long long i = 0; i < steps; ++i) {
+    sim.step();
+    largest = std::max(largest, std::abs(s.model.bodies.position[s.block].z() - z0));
+    if (!(largest < 1e6 * initial)) break;
+  }
+  return largest / initial;
+}
+}  // namespace
+
+TEST_CASE("simulation: stable at 0.95 and unstable at 1.1 times the critical timestep (eq. 1, 11, 20)") {
+  SUBCASE("no damping (eq. 1)") {
+    CHECK(growth_at(damping::None{}, 0.95) < 10);
+    CHECK(growth_at(damping::None{}, 1.1) > 1e3);
+  }
+  SUBCASE("stiffness-proportional, zeta = 0.3 at omega_max (eq. 11: factor 0.744)") {
+    const damping::StiffnessProportional policy{2 * 0.3 / 2e5};
+    CHECK(policy.timestep_factor(2e5) == doctest::Approx(std::sqrt(1.09) - 0.3));
+    CHECK(growth_at(policy, 0.95) < 10);
+    CHECK(growth_at(policy, 1.1) > 1e3);
+  }
+  SUBCASE("Maxwell<3>, 4 % over 1-40 Hz (eq. 20: factor 1 / sqrt(1.39))") {
+    damping::MaxwellFitOptions options;
+    options.damping_ratio = 0.04;
+    const auto policy = damping::to_policy<3>(damping::fit_maxwell(options));
+    CHECK(growth_at(policy, 0.95) < 10);
+    CHECK(growth_at(policy, 1.1) > 1e3);
+  }
+}
+
+TEST_CASE("simulation: an undamped elastic run conserves energy and is time reversible") {
+  // A block free in all six degrees of freedom, spinning and bouncing on elastic joints without gravity.
+  auto s = test::block_on_base(0.6, 0.4, 1.0);
+  s.model.gravity = Vec3(0, 0, -9.81);
+  auto& b = s.model.bodies;
+  b.velocity[s.block] = Vec3(2e-3, -1e-3, 3e-3);
+  b.angular_velocity[s.block] = Vec3(1e-3, 2e-3, -1.5e-3);
+  const double kn = 1e7;  // soft enough that the block turns by ~1e-3 rad, far above rounding
+  model::ContactSettings contacts;
+  contacts.tolerance = 0.01;  // no re-detection during the run: this test is about the scheme
+  Simulation<damping::None, contact::Elastic> sim(s.model, damping::None{},
+                                                  [&](int, int) { return contact::Elastic::Parameters(kn, 0.4 * kn); },
+                                                  contacts);
+  sim.set_timestep(0.1 * sim.critical_timestep());
+  const Vec3 x0 = b.position[s.block];
+  const Mat3 r0 = b.rotation[s.block];
+  const auto n = 100000;
+  double worst = 0;
+  double excursion = 0;
+  double turn = 0;
+  for (int i = 0; i < n; ++i) {
+    sim.step();
+    excursion = std::max(excursion, (b.position[s.block] - x0).norm());
+    turn = std::max(turn, (b.rotation[s.block] - r0).norm());
+    if (i % 1000 == 999) worst = std::max(worst, sim.energy().balance_error);
+  }
+  CHECK(worst < 1e-3);  // total energy (kinetic + elastic - gravity work) within 0.1 %
+  sim.reverse();
+  for (int i = 0; i < n; ++i) sim.step();
+  // Back to the start, relative to how far the block went.
+  CHECK((b.position[s.block] - x0).norm() / excursion < 1e-9);
+  CHECK((b.rotation[s.block] - r0).norm() / turn < 1e-9);  // (not angularDistance: its acos floor is 1e-8)
+  CHECK(sim.detections() == 1);
+}
