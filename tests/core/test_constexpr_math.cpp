@@ -2,6 +2,8 @@
 
 #include <doctest/doctest.h>
 
+#include "../approx.hpp"
+
 #include <cmath>
 
 #include "blockdem/core/constexpr_math.hpp"
@@ -48,5 +50,5 @@ TEST_CASE("constexpr math: the functions are usable in constant expressions") {
   static_assert(cmath::abs(cmath::sqrt(2.0) - 1.4142135623730951) < 3e-16);  // 1 ulp
   static_assert(cmath::abs(cmath::sigmoid(0.0) - 0.5) < 1e-16);
   static_assert(cmath::abs(cmath::softplus(0.0) - 0.6931471805599453) < 1e-15);
-  CHECK(cmath::exp(1.0) == doctest::Approx(std::exp(1.0)));
+  CHECK(cmath::exp(1.0) == test::approx(std::exp(1.0)));
 }

@@ -3,6 +3,8 @@
 
 #include <doctest/doctest.h>
 
+#include "../approx.hpp"
+
 #include <array>
 #include <cmath>
 #include <complex>
@@ -18,17 +20,17 @@ TEST_CASE("maxwell: single-branch closed forms (eq. 16-18) agree with the genera
     const std::array<MaxwellBranch, 1> one{b};
     for (int j = 0; j <= 200; ++j) {
       const double omega = std::pow(10.0, -2.0 + 8.0 * j / 200.0);
-      CHECK(damping::damping_ratio(one, omega) == doctest::Approx(b.damping_ratio(omega)).epsilon(1e-13));
-      CHECK(damping::complex_modulus(one, omega).magnitude() == doctest::Approx(b.modulus(omega)).epsilon(1e-13));
+      CHECK(damping::damping_ratio(one, omega) == test::approx(b.damping_ratio(omega)).epsilon(1e-13));
+      CHECK(damping::complex_modulus(one, omega).magnitude() == test::approx(b.modulus(omega)).epsilon(1e-13));
     }
     // eq. 17: the peak of eq. 16 and where it lies.
     const double w_peak = b.peak_angular_frequency();
-    CHECK(b.damping_ratio(w_peak) == doctest::Approx(b.peak_damping_ratio()).epsilon(1e-14));
+    CHECK(b.damping_ratio(w_peak) == test::approx(b.peak_damping_ratio()).epsilon(1e-14));
     CHECK(b.damping_ratio(w_peak * 1.01) < b.peak_damping_ratio());
     CHECK(b.damping_ratio(w_peak / 1.01) < b.peak_damping_ratio());
     // eq. 18: |M_T| rises monotonically to 1 + alpha.
-    CHECK(b.modulus(1e12 / b.tau) == doctest::Approx(1.0 + b.alpha).epsilon(1e-12));
-    CHECK(b.modulus(1e-12 / b.tau) == doctest::Approx(1.0).epsilon(1e-12));
+    CHECK(b.modulus(1e12 / b.tau) == test::approx(1.0 + b.alpha).epsilon(1e-12));
+    CHECK(b.modulus(1e-12 / b.tau) == test::approx(1.0).epsilon(1e-12));
   }
 }
 
@@ -43,10 +45,10 @@ TEST_CASE("maxwell: the evaluator agrees with std::complex springs-and-dashpots"
       m += b.alpha * iwt / (1.0 + iwt);
     }
     const auto ours = damping::complex_modulus(branches, omega);
-    CHECK(ours.real == doctest::Approx(m.real()).epsilon(1e-14));
-    CHECK(ours.imag == doctest::Approx(m.imag()).epsilon(1e-14));
-    CHECK(ours.damping_ratio() == doctest::Approx(m.imag() / (2.0 * m.real())).epsilon(1e-14));
-    CHECK(ours.magnitude() == doctest::Approx(std::abs(m)).epsilon(1e-14));
+    CHECK(ours.real == test::approx(m.real()).epsilon(1e-14));
+    CHECK(ours.imag == test::approx(m.imag()).epsilon(1e-14));
+    CHECK(ours.damping_ratio() == test::approx(m.imag() / (2.0 * m.real())).epsilon(1e-14));
+    CHECK(ours.magnitude() == test::approx(std::abs(m)).epsilon(1e-14));
   }
 }
 
@@ -54,8 +56,8 @@ TEST_CASE("maxwell: from_peak inverts eq. 17, the form 3DEC takes branches in") 
   for (double zeta : {0.005, 0.03, 0.2}) {
     for (double f : {0.5, 7.5, 40.0}) {
       const auto b = MaxwellBranch::from_peak(zeta, angular_frequency(f));
-      CHECK(b.peak_damping_ratio() == doctest::Approx(zeta).epsilon(1e-14));
-      CHECK(frequency_hz(b.peak_angular_frequency()) == doctest::Approx(f).epsilon(1e-14));
+      CHECK(b.peak_damping_ratio() == test::approx(zeta).epsilon(1e-14));
+      CHECK(frequency_hz(b.peak_angular_frequency()) == test::approx(f).epsilon(1e-14));
     }
   }
   CHECK_THROWS_AS(MaxwellBranch::from_peak(0.0, 1.0), InvalidArgument);
@@ -65,7 +67,7 @@ TEST_CASE("maxwell: from_peak inverts eq. 17, the form 3DEC takes branches in") 
 TEST_CASE("maxwell: Maxwell<N> policy and the eq. 20 timestep factor") {
   damping::Maxwell<3> policy{{{{0.1, 0.1}, {0.2, 0.01}, {0.09, 0.001}}}};
   static_assert(damping::Maxwell<3>::num_branches == 3);
-  CHECK(policy.timestep_factor() == doctest::Approx(1.0 / std::sqrt(1.39)).epsilon(1e-15));
-  CHECK(damping::stiffness_factor(policy.branches) == doctest::Approx(1.39));
-  CHECK(policy.damping_ratio(10.0) == doctest::Approx(policy.complex_modulus(10.0).damping_ratio()));
+  CHECK(policy.timestep_factor() == test::approx(1.0 / std::sqrt(1.39)).epsilon(1e-15));
+  CHECK(damping::stiffness_factor(policy.branches) == test::approx(1.39));
+  CHECK(policy.damping_ratio(10.0) == test::approx(policy.complex_modulus(10.0).damping_ratio()));
 }

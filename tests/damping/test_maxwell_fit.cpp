@@ -3,6 +3,8 @@
 
 #include <doctest/doctest.h>
 
+#include "../approx.hpp"
+
 #include <cmath>
 #include <string>
 
@@ -32,12 +34,12 @@ TEST_CASE("maxwell fit: 4 % over 1-40 Hz with 3 branches gives |M_T| max = 1 + s
     const auto fit = damping::fit_maxwell(paper_fig10(margin));
     CHECK(fit.converged);
     CHECK(fit.branches == 3);
-    CHECK(1.0 + fit.sum_alpha == doctest::Approx(1.39).epsilon(0.01 / 1.39));
-    CHECK(fit.modulus_max == doctest::Approx(1.0 + fit.sum_alpha).epsilon(1e-9));
+    CHECK(1.0 + fit.sum_alpha == test::approx(1.39).epsilon(0.01 / 1.39));
+    CHECK(fit.modulus_max == test::approx(1.0 + fit.sum_alpha).epsilon(1e-9));
     CHECK(fit.rel_error_min >= -0.025);
     CHECK(fit.rel_error_max <= 0.012);
     CHECK(fit.rel_error_min < -0.02);  // a 3-branch fit cannot be much flatter than this
-    CHECK(fit.dt_factor == doctest::Approx(1.0 / std::sqrt(1.0 + fit.sum_alpha)));
+    CHECK(fit.dt_factor == test::approx(1.0 / std::sqrt(1.0 + fit.sum_alpha)));
     CHECK(fit.iterations <= 30);
     for (int i = 0; i < 3; ++i) {  // eq. 25: ordered peaks inside the (widened) band
       CHECK(fit.peak_hz(i) >= 1.0 / margin - 1e-9);
@@ -52,14 +54,14 @@ TEST_CASE("maxwell fit: agrees with an independent MINPACK fit of the unconstrai
   // 4 % over 1-40 Hz, 500 points: 1 + sum alpha = 1.3947, error -2.256 % / +1.048 %,
   // peaks 0.994, 6.291, 39.717 Hz, alpha 0.1290, 0.1006, 0.1652.
   const auto fit = damping::fit_maxwell(paper_fig10());
-  CHECK(1.0 + fit.sum_alpha == doctest::Approx(1.3947).epsilon(2e-4));
-  CHECK(fit.rel_error_min == doctest::Approx(-0.02256).epsilon(2e-3));
-  CHECK(fit.rel_error_max == doctest::Approx(0.01048).epsilon(5e-3));
+  CHECK(1.0 + fit.sum_alpha == test::approx(1.3947).epsilon(2e-4));
+  CHECK(fit.rel_error_min == test::approx(-0.02256).epsilon(2e-3));
+  CHECK(fit.rel_error_max == test::approx(0.01048).epsilon(5e-3));
   const double peaks[] = {0.994, 6.291, 39.717};
   const double alphas[] = {0.1290, 0.1006, 0.1652};
   for (int i = 0; i < 3; ++i) {
-    CHECK(fit.peak_hz(i) == doctest::Approx(peaks[i]).epsilon(2e-3));
-    CHECK(fit.branch[i].alpha == doctest::Approx(alphas[i]).epsilon(2e-3));
+    CHECK(fit.peak_hz(i) == test::approx(peaks[i]).epsilon(2e-3));
+    CHECK(fit.branch[i].alpha == test::approx(alphas[i]).epsilon(2e-3));
   }
 }
 
@@ -69,8 +71,8 @@ TEST_CASE("maxwell fit: the relative error does not depend on zeta* (the paper's
   options.damping_ratio = 0.03;
   const auto three = damping::fit_maxwell(options);
   CHECK(three.converged);
-  CHECK(three.rel_error_min == doctest::Approx(four.rel_error_min).epsilon(1e-3));
-  CHECK(three.rel_error_max == doctest::Approx(four.rel_error_max).epsilon(1e-3));
+  CHECK(three.rel_error_min == test::approx(four.rel_error_min).epsilon(1e-3));
+  CHECK(three.rel_error_max == test::approx(four.rel_error_max).epsilon(1e-3));
   CHECK(three.sum_alpha < four.sum_alpha);
 }
 
@@ -123,7 +125,7 @@ TEST_CASE("maxwell fit: the analytic Jacobian matches central differences, for b
         const double numeric = (problem.residual(problem.prepare(xp), j) - problem.residual(problem.prepare(xm), j)) / (2 * h);
         CAPTURE(j);
         CAPTURE(k);
-        CHECK(gradient[k] == doctest::Approx(numeric).epsilon(1e-6).scale(1e-3));
+        CHECK(gradient[k] == test::approx(numeric).epsilon(1e-6).scale(1e-3));
       }
     }
   }
@@ -140,9 +142,9 @@ TEST_CASE("maxwell fit: deterministic, and branches given as 3DEC peak pairs eva
   for (int i = 0; i < 3; ++i)
     from_3dec[i] = damping::MaxwellBranch::from_peak(a.peak_damping_ratio(i), angular_frequency(a.peak_hz(i)));
   const auto again = damping::evaluate_branches(from_3dec, 0.04, 1.0, 40.0);
-  CHECK(again.sum_alpha == doctest::Approx(a.sum_alpha).epsilon(1e-12));
-  CHECK(again.rel_error_min == doctest::Approx(a.rel_error_min).epsilon(1e-9));
-  CHECK(again.rel_error_max == doctest::Approx(a.rel_error_max).epsilon(1e-9));
+  CHECK(again.sum_alpha == test::approx(a.sum_alpha).epsilon(1e-12));
+  CHECK(again.rel_error_min == test::approx(a.rel_error_min).epsilon(1e-9));
+  CHECK(again.rel_error_max == test::approx(a.rel_error_max).epsilon(1e-9));
 }
 
 TEST_CASE("maxwell fit: bad options name the field and its range") {

@@ -3,6 +3,8 @@
 
 #include <doctest/doctest.h>
 
+#include "../approx.hpp"
+
 #include <cmath>
 #include <vector>
 
@@ -53,7 +55,7 @@ TEST_CASE("simulation: a block on an elastic joint vibrates at sqrt(k A / m) (SD
   for (double f : {0.5, 3.0, 20.0, 100.0}) {
     const auto d = vibrate(damping::None{}, f);
     CAPTURE(f);
-    CHECK(d.frequency_hz == doctest::Approx(f).epsilon(0.005));
+    CHECK(d.frequency_hz == test::approx(f).epsilon(0.005));
     CHECK(d.damping_ratio < 1e-4);
   }
 }
@@ -65,7 +67,7 @@ TEST_CASE("simulation: the damping ratio measured from free decay matches each p
     for (double f : frequencies) {
       CAPTURE(f);
       const auto d = vibrate(policy, f, f < 1 ? 6 : 40);
-      CHECK(d.damping_ratio == doctest::Approx(policy.damping_ratio(two_pi * f)).epsilon(0.05));
+      CHECK(d.damping_ratio == test::approx(policy.damping_ratio(two_pi * f)).epsilon(0.05));
     }
   }
   SUBCASE("stiffness-proportional, 2 % at 10 Hz (eq. 10 with alpha = 0)") {
@@ -73,7 +75,7 @@ TEST_CASE("simulation: the damping ratio measured from free decay matches each p
     for (double f : frequencies) {
       CAPTURE(f);
       const auto d = vibrate(policy, f, f > 50 ? 6 : 40);
-      CHECK(d.damping_ratio == doctest::Approx(policy.damping_ratio(two_pi * d.frequency_hz)).epsilon(0.05));
+      CHECK(d.damping_ratio == test::approx(policy.damping_ratio(two_pi * d.frequency_hz)).epsilon(0.05));
     }
   }
   SUBCASE("Rayleigh, 3 % at 1 and 40 Hz (eq. 10)") {
@@ -81,7 +83,7 @@ TEST_CASE("simulation: the damping ratio measured from free decay matches each p
     for (double f : frequencies) {
       CAPTURE(f);
       const auto d = vibrate(policy, f, 10);
-      CHECK(d.damping_ratio == doctest::Approx(policy.damping_ratio(two_pi * d.frequency_hz)).epsilon(0.05));
+      CHECK(d.damping_ratio == test::approx(policy.damping_ratio(two_pi * d.frequency_hz)).epsilon(0.05));
     }
   }
   SUBCASE("Maxwell<3>, fitted to 4 % over 1-40 Hz (eq. 19 at the measured frequency)") {
@@ -91,7 +93,7 @@ TEST_CASE("simulation: the damping ratio measured from free decay matches each p
     for (double f : frequencies) {
       CAPTURE(f);
       const auto d = vibrate(policy, f, 12);
-      CHECK(d.damping_ratio == doctest::Approx(policy.damping_ratio(two_pi * d.frequency_hz)).epsilon(0.05));
+      CHECK(d.damping_ratio == test::approx(policy.damping_ratio(two_pi * d.frequency_hz)).epsilon(0.05));
     }
   }
 }
@@ -127,7 +129,7 @@ TEST_CASE("simulation: stable at 0.95 and unstable at 1.1 times the critical tim
   }
   SUBCASE("stiffness-proportional, zeta = 0.3 at omega_max (eq. 11: factor 0.744)") {
     const damping::StiffnessProportional policy{2 * 0.3 / 2e5};
-    CHECK(policy.timestep_factor(2e5) == doctest::Approx(std::sqrt(1.09) - 0.3));
+    CHECK(policy.timestep_factor(2e5) == test::approx(std::sqrt(1.09) - 0.3));
     CHECK(growth_at(policy, 0.95) < 10);
     CHECK(growth_at(policy, 1.1) > 1e3);
   }

@@ -3,6 +3,8 @@
 
 #include <doctest/doctest.h>
 
+#include "../approx.hpp"
+
 #include <cmath>
 #include <limits>
 
@@ -54,9 +56,9 @@ void check_nist(const test::NistData<N, M>& data, const Vector<N>& start) {
   // NIST asks for agreement to about 6 significant digits with the certified values.
   for (int k = 0; k < N; ++k) {
     CAPTURE(k);
-    CHECK(b[k] == doctest::Approx(data.certified[k]).epsilon(1e-6));
+    CHECK(b[k] == test::approx(data.certified[k]).epsilon(1e-6));
   }
-  CHECK(2.0 * summary.final_cost == doctest::Approx(data.certified_residual_sum_of_squares).epsilon(1e-8));
+  CHECK(2.0 * summary.final_cost == test::approx(data.certified_residual_sum_of_squares).epsilon(1e-8));
 }
 
 }  // namespace
@@ -65,16 +67,16 @@ TEST_CASE("levenberg_marquardt: Rosenbrock from (-1.2, 1) reaches (1, 1), analyt
   Vector<2> x{-1.2, 1.0};
   const auto summary = solve::levenberg_marquardt(Rosenbrock{}, x);
   CHECK(summary.converged());
-  CHECK(x[0] == doctest::Approx(1.0).epsilon(1e-8));
-  CHECK(x[1] == doctest::Approx(1.0).epsilon(1e-8));
+  CHECK(x[0] == test::approx(1.0).epsilon(1e-8));
+  CHECK(x[1] == test::approx(1.0).epsilon(1e-8));
   CHECK(summary.final_cost < 1e-16);
-  CHECK(summary.initial_cost == doctest::Approx(0.5 * (4.4 * 4.4 + 2.2 * 2.2)));
+  CHECK(summary.initial_cost == test::approx(0.5 * (4.4 * 4.4 + 2.2 * 2.2)));
 
   Vector<2> y{-1.2, 1.0};
   const auto numeric = solve::levenberg_marquardt(RosenbrockNumeric{}, y);
   CHECK(numeric.converged());
-  CHECK(y[0] == doctest::Approx(1.0).epsilon(1e-8));
-  CHECK(y[1] == doctest::Approx(1.0).epsilon(1e-8));
+  CHECK(y[0] == test::approx(1.0).epsilon(1e-8));
+  CHECK(y[1] == test::approx(1.0).epsilon(1e-8));
   CHECK(numeric.residual_evaluations > 0);
 }
 

@@ -2,6 +2,8 @@
 
 #include <doctest/doctest.h>
 
+#include "../approx.hpp"
+
 #include <utility>
 
 #include "blockdem/damping/maxwell_fit.hpp"
@@ -41,8 +43,8 @@ static_assert(constexpr_fit.rel_error_min > -0.025 && constexpr_fit.rel_error_ma
 TEST_CASE("static: the compile-time Maxwell fit equals the run-time one") {
   const auto runtime_fit = blockdem::damping::fit_maxwell(constexpr_options);
   for (int i = 0; i < 3; ++i) {
-    CHECK(constexpr_fit.branch[i].alpha == doctest::Approx(runtime_fit.branch[i].alpha).epsilon(1e-9));
-    CHECK(constexpr_fit.branch[i].tau == doctest::Approx(runtime_fit.branch[i].tau).epsilon(1e-9));
+    CHECK(constexpr_fit.branch[i].alpha == blockdem::test::approx(runtime_fit.branch[i].alpha).epsilon(1e-9));
+    CHECK(constexpr_fit.branch[i].tau == blockdem::test::approx(runtime_fit.branch[i].tau).epsilon(1e-9));
   }
   CHECK(constexpr_fit.iterations == runtime_fit.iterations);
 }

@@ -53,7 +53,8 @@ struct MohrCoulomb {
     double gap = 0;        // m, positive open
     Shear shear{0, 0};     // Pa
     double normal = 0;     // Pa, compression positive
-    std::uint8_t failed = 0;
+    std::uint8_t failed = 0;    // the bond broke: residual strengths from now on
+    std::uint8_t slipping = 0;  // at the Coulomb limit in the last step
   };
 
   static Response update(const Parameters& p, History& h, double du_normal, Shear du_shear) noexcept {
@@ -72,7 +73,8 @@ struct MohrCoulomb {
                                             std::fmax(sigma, 0.0) * (now_failed ? p.tan_residual_friction : p.tan_friction));
     const double magnitude = std::sqrt(tau[0] * tau[0] + tau[1] * tau[1]);
     double dissipated = 0.0;
-    if (magnitude > limit) {  // slip: return to the Coulomb limit along the trial direction
+    h.slipping = magnitude > limit;
+    if (h.slipping) {  // slip: return to the Coulomb limit along the trial direction
       const double scale = magnitude > 0 ? limit / magnitude : 0.0;
       dissipated = limit * (magnitude - limit) / p.shear_stiffness;  // limit times the plastic slip
       tau = {tau[0] * scale, tau[1] * scale};
@@ -83,9 +85,9 @@ struct MohrCoulomb {
   }
   static constexpr double normal_stiffness(const Parameters& p) noexcept { return p.normal_stiffness; }
   static constexpr double shear_stiffness(const Parameters& p) noexcept { return p.shear_stiffness; }
-  /// Off once the bond has failed, and while the joint is open (a gap without tensile strength to bridge it).
+  /// Off once the bond has failed, while the joint slips, and while it is open (a gap without tensile strength).
   static constexpr bool damping_active(const Parameters& p, const History& h) noexcept {
-    return h.failed == 0 && (h.gap <= 0 || p.tensile_strength > 0);
+    return h.failed == 0 && h.slipping == 0 && (h.gap <= 0 || p.tensile_strength > 0);
   }
   static constexpr double stored_energy(const Parameters& p, const History& h) noexcept {
     return 0.5 * h.normal * h.normal / p.normal_stiffness +

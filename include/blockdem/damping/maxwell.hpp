@@ -59,8 +59,11 @@ struct MaxwellBranch {
   static constexpr MaxwellBranch from_peak(double peak_damping_ratio, double peak_omega) {
     if (!(peak_damping_ratio > 0.0) || !(peak_omega > 0.0))
       throw InvalidArgument("maxwell branch: the peak damping ratio and the peak frequency must be > 0");
-    const double s = 2.0 * peak_damping_ratio + cmath::sqrt(4.0 * peak_damping_ratio * peak_damping_ratio + 1.0);
-    return {s * s - 1.0, 1.0 / (peak_omega * s)};
+    const double root = cmath::sqrt(4.0 * peak_damping_ratio * peak_damping_ratio + 1.0);
+    const double s = 2.0 * peak_damping_ratio + root;
+    // alpha = s^2 - 1 = (s - 1)(s + 1), with s - 1 written without cancellation for small ratios.
+    const double s_minus_1 = 2.0 * peak_damping_ratio + 4.0 * peak_damping_ratio * peak_damping_ratio / (root + 1.0);
+    return {s_minus_1 * (s + 1.0), 1.0 / (peak_omega * s)};
   }
 };
 
@@ -122,9 +125,13 @@ struct Maxwell {
     }
   }
 
-  double spring_stress(ContactState& s, double stiffness, double du, double, bool active,
+  double spring_stress(ContactState& s, double stiffness, double du, double dt, bool active,
                        double& dissipated) const noexcept {
     double total = 0.0;
+    if (dt <= 0.0) {  // no time passes (first step, forces recomputed after a detection): no relaxation
+      for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) total += active ? s[i] : 0.0;
+      return total;
+    }
     for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
       const double old = s[i];
       const double updated = active ? old * decay_[i] + gain_[i] * stiffness * du : 0.0;

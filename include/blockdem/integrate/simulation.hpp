@@ -63,6 +63,7 @@ class Simulation {
                             std::to_string(-deepest.second) + " m, more than the contact tolerance " +
                             std::to_string(settings_.tolerance) + " m");
     assign_contacts(candidates, /*keep_history=*/false);
+    pending_increment_ = false;
     set_timestep(default_timestep());
   }
 
@@ -152,12 +153,17 @@ class Simulation {
   // ---- the step ----
 
   void step() {
-    if (++steps_since_check_ >= settings_.redetection_check_interval) {
-      steps_since_check_ = 0;
-      if (moved_beyond_redetection_distance()) redetect();
-    }
     const double increment_dt = pending_increment_ ? dt_ : 0.0;
     for_each_group([&](auto& g) { contact_pass(g, increment_dt); });
+    // Joint histories are now at the current positions: the moment to detect contacts again if blocks have moved
+    // (relative to the base) by more than the redetection distance. Forces of the new set, then the block pass.
+    if (++steps_since_check_ >= settings_.redetection_check_interval) {
+      steps_since_check_ = 0;
+      if (moved_beyond_redetection_distance()) {
+        assign_contacts(model::detect_contacts(model_->bodies, settings_), /*keep_history=*/true);
+        for_each_group([&](auto& g) { contact_pass(g, 0.0); });
+      }
+    }
     block_pass(increment_dt);
     // The scheme conserves 1/2 m v(n-1/2).v(n+1/2) + U(x_n): the reference is its value at the first step.
     if (energy_reference_pending_) {
@@ -232,6 +238,7 @@ class Simulation {
     synchronize();
     const auto candidates = model::detect_contacts(model_->bodies, settings_);
     assign_contacts(candidates, /*keep_history=*/true);
+    pending_increment_ = false;
   }
 
  private:
@@ -275,13 +282,17 @@ class Simulation {
     }
   }
 
+  /// Displacement relative to the base motion since the last detection (a structure riding on the table needs no
+  /// new contacts), plus rotation times the block's radius.
   bool moved_beyond_redetection_distance() const {
     const auto& b = model_->bodies;
     const double limit = settings_.redetection();
+    const Vec3 base_moved = base_displacement_ - detected_base_displacement_;
     for (std::size_t i = 0; i < b.size(); ++i) {
-      if (b.motion[i] == model::Motion::fixed) continue;
-      const double angle = b.orientation[i].angularDistance(detected_orientation_[i]);
-      if ((b.position[i] - detected_position_[i]).norm() + angle * radius_[i] > limit) return true;
+      if (b.motion[i] != model::Motion::free) continue;
+      // 2 |vector part of q q0^-1| = angle for small angles, without acos.
+      const double angle = 2.0 * (b.orientation[i] * detected_orientation_[i].conjugate()).vec().norm();
+      if ((b.position[i] - detected_position_[i] - base_moved).norm() + angle * radius_[i] > limit) return true;
     }
     return false;
   }
@@ -313,7 +324,7 @@ class Simulation {
     for_each_group([&](auto& g) { g.build_gather_lists(b.size()); });
     detected_position_ = b.position;
     detected_orientation_ = b.orientation;
-    pending_increment_ = false;
+    detected_base_displacement_ = base_displacement_;
     ++detections_;
   }
 
@@ -347,8 +358,11 @@ class Simulation {
       const auto& o = std::get<Group<L>>(old);
       for (std::size_t k = 0; k < o.size(); ++k) {
         if (o.body_a[k] != c.a || o.body_b[k] != c.b) continue;
-        const Vec3 old_position = b.position[c.a] + ra * o.arm_a[k];
-        if ((old_position - c.position).norm() > match) continue;
+        // The old CP's material points on A and on B have drifted apart by the slip since the last detection; the
+        // new CP sits at a vertex of one of the two faces, so it is near one of them.
+        const Vec3 on_a = b.position[c.a] + ra * o.arm_a[k];
+        const Vec3 on_b = b.position[c.b] + rb * o.arm_b[k];
+        if (std::min((on_a - c.position).norm(), (on_b - c.position).norm()) > match) continue;
         h = o.history[k];
         spring = o.spring_state[k];
         slip = o.slip_dissipation[k];
@@ -470,6 +484,7 @@ class Simulation {
     const double dt = dt_;
     const Vec3 gravity = model_->gravity;
     const Vec3 base_velocity = model_->base_velocity(time_ + 0.5 * dt);
+    if (move) base_displacement_ += dt * base_velocity;
     const Damping& damping = damping_;
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t ii = 0; ii < count; ++ii) {
@@ -594,6 +609,8 @@ class Simulation {
   bool pending_increment_ = false;
   std::vector<double> kinetic_, gravity_work_, base_work_, viscous_, radius_;
   std::vector<Vec3> detected_position_;
+  Vec3 base_displacement_ = Vec3::Zero();           // m, integral of the base velocity
+  Vec3 detected_base_displacement_ = Vec3::Zero();  // at the last detection
   std::vector<Quaternion> detected_orientation_;
   EnergyReport energy0_;
   bool energy_reference_pending_ = true;

@@ -27,7 +27,7 @@ struct ContactSettings {
   double max_contact_point_area = 0;  ///< m^2: subdivide overlaps so that no CP carries more (0: CPs at the polygon vertices only)
   double max_normal_angle = 0.35;     ///< rad: faces tilted more than this from the common plane are not in contact (20 deg)
   double redetection_distance = 0;    ///< m: detect again once a block moved this far (0: half the tolerance)
-  int redetection_check_interval = 10;  ///< steps between checks of the distance moved
+  int redetection_check_interval = 1;   ///< steps between checks of the distance moved
 
   void validate() const {
     if (!(tolerance > 0)) throw InvalidArgument("contact settings: tolerance must be > 0 m");
