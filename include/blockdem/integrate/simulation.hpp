@@ -150,6 +150,44 @@ class Simulation {
   template <contact::ContactLaw L>
   auto& group() { return std::get<Group<L>>(groups_); }
 
+  /// One contact point as output sees it (world frame).
+  struct ContactView {
+    Vec3 position;        // m, midway between the material points on A and B
+    Vec3 normal;          // from A to B
+    Vec3 force;           // N, on B
+    double area = 0;      // m^2
+    double gap = 0;       // m, positive open
+    double normal_stress = 0;  // Pa, compression positive (joint law plus damping)
+    double shear_stress = 0;   // Pa, magnitude
+    double damage = 0;    // 0 intact .. 1 failed (laws without damage: 1 once failed)
+    std::size_t block_a = 0, block_b = 0;
+  };
+
+  /// Calls f(const ContactView&) for every contact point, group by group.
+  template <class F>
+  void visit_contacts(F&& f) const {
+    const auto& b = model_->bodies;
+    for_each_group([&](const auto& g) {
+      for (std::size_t k = 0; k < g.size(); ++k) {
+        ContactView v;
+        const std::size_t a = g.body_a[k], bb = g.body_b[k];
+        v.block_a = a;
+        v.block_b = bb;
+        v.position = 0.5 * (b.position[a] + b.rotation[a] * g.arm_a[k] + b.position[bb] + b.rotation[bb] * g.arm_b[k]);
+        v.normal = b.rotation[a] * g.normal_a[k];
+        v.force = g.force[k];
+        v.area = g.area[k];
+        const auto& h = g.history[k];
+        v.gap = h.gap;
+        v.normal_stress = v.force.dot(v.normal) / v.area;
+        v.shear_stress = (v.force - v.force.dot(v.normal) * v.normal).norm() / v.area;
+        if constexpr (requires { h.damage; }) v.damage = h.damage;
+        else if constexpr (requires { h.failed; }) v.damage = h.failed ? 1.0 : 0.0;
+        f(v);
+      }
+    });
+  }
+
   // ---- the step ----
 
   void step() {
@@ -432,7 +470,7 @@ class Simulation {
     const Vec3* const omega = b.angular_velocity.data();
     const auto count = static_cast<std::ptrdiff_t>(g.size());
     const Damping& damping = damping_;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (count > 4096)
     for (std::ptrdiff_t kk = 0; kk < count; ++kk) {
       const auto k = static_cast<std::size_t>(kk);
       const std::uint32_t a = g.body_a[k];
@@ -486,7 +524,7 @@ class Simulation {
     const Vec3 base_velocity = model_->base_velocity(time_ + 0.5 * dt);
     if (move) base_displacement_ += dt * base_velocity;
     const Damping& damping = damping_;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (count > 4096)
     for (std::ptrdiff_t ii = 0; ii < count; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
       Vec3 force = Vec3::Zero();

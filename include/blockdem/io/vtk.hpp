@@ -1,0 +1,127 @@
+#pragma once
+// VTK XML unstructured grids (.vtu) for ParaView: blocks as polygon faces with per-block fields, contact points as
+// vertices with their stresses, gap and damage.
+
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "blockdem/core/error.hpp"
+#include "blockdem/core/types.hpp"
+#include "blockdem/model/model.hpp"
+
+namespace blockdem::io {
+
+namespace detail {
+
+inline std::ofstream open_for_writing(const std::string& path) {
+  std::ofstream out(path);
+  if (!out) throw InvalidArgument("vtk: cannot open '" + path + "' for writing");
+  return out;
+}
+
+inline void write_points(std::ofstream& out, const std::vector<Vec3>& points) {
+  out << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  char buffer[96];
+  for (const auto& p : points) {
+    std::snprintf(buffer, sizeof buffer, "%.10g %.10g %.10g\n", p.x(), p.y(), p.z());
+    out << buffer;
+  }
+  out << "</DataArray></Points>\n";
+}
+
+template <class T>
+void write_array(std::ofstream& out, const std::string& name, const std::vector<T>& values, int components = 1) {
+  out << "<DataArray type=\"" << (std::is_integral_v<T> ? "Int32" : "Float64") << "\" Name=\"" << name
+      << "\" NumberOfComponents=\"" << components << "\" format=\"ascii\">\n";
+  for (const auto& v : values) out << v << ' ';
+  out << "\n</DataArray>\n";
+}
+
+}  // namespace detail
+
+/// Per-block cell fields: name -> one value per block.
+using BlockFields = std::map<std::string, std::vector<double>>;
+
+/// Writes every block's faces as polygons; cell data `block`, `motion` (0 free, 1 fixed, 2 base) and `fields`.
+inline void write_blocks_vtu(const std::string& path, const model::Model& model, const BlockFields& fields = {}) {
+  const auto& b = model.bodies;
+  for (const auto& [name, values] : fields)
+    if (values.size() != b.size())
+      throw InvalidArgument("vtk: block field '" + name + "' has " + std::to_string(values.size()) + " values for " + std::to_string(b.size()) + " blocks");
+  std::vector<Vec3> points;
+  std::vector<int> connectivity, offsets, types, block, motion;
+  std::map<std::string, std::vector<double>> cell_fields;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    const auto shape = b.world_shape(i);
+    const int first = static_cast<int>(points.size());
+    points.insert(points.end(), shape.vertices.begin(), shape.vertices.end());
+    for (const auto& face : shape.faces) {
+      for (int v : face) connectivity.push_back(first + v);
+      offsets.push_back(static_cast<int>(connectivity.size()));
+      types.push_back(7);  // VTK_POLYGON
+      block.push_back(static_cast<int>(i));
+      motion.push_back(static_cast<int>(b.motion[i]));
+      for (const auto& [name, values] : fields) cell_fields[name].push_back(values[i]);
+    }
+  }
+  auto out = detail::open_for_writing(path);
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "<UnstructuredGrid><Piece NumberOfPoints=\"" << points.size() << "\" NumberOfCells=\"" << types.size() << "\">\n";
+  detail::write_points(out, points);
+  out << "<Cells>\n";
+  detail::write_array(out, "connectivity", connectivity);
+  detail::write_array(out, "offsets", offsets);
+  out << "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+  for (int t : types) out << t << ' ';
+  out << "\n</DataArray>\n</Cells>\n<CellData Scalars=\"block\">\n";
+  detail::write_array(out, "block", block);
+  detail::write_array(out, "motion", motion);
+  for (const auto& [name, values] : cell_fields) detail::write_array(out, name, values);
+  out << "</CellData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+  if (!out) throw InvalidArgument("vtk: writing '" + path + "' failed");
+}
+
+/// Writes the contact points of a simulation as vertices with normal_stress, shear_stress (Pa), gap (m), area (m^2),
+/// damage and normal.
+template <class Simulation>
+void write_contacts_vtu(const std::string& path, const Simulation& simulation) {
+  std::vector<Vec3> points;
+  std::vector<double> normal_stress, shear_stress, gap, area, damage, normal;
+  simulation.visit_contacts([&](const auto& c) {
+    points.push_back(c.position);
+    normal_stress.push_back(c.normal_stress);
+    shear_stress.push_back(c.shear_stress);
+    gap.push_back(c.gap);
+    area.push_back(c.area);
+    damage.push_back(c.damage);
+    for (int k = 0; k < 3; ++k) normal.push_back(c.normal[k]);
+  });
+  auto out = detail::open_for_writing(path);
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "<UnstructuredGrid><Piece NumberOfPoints=\"" << points.size() << "\" NumberOfCells=\"" << points.size() << "\">\n";
+  detail::write_points(out, points);
+  std::vector<int> connectivity(points.size()), offsets(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    connectivity[i] = static_cast<int>(i);
+    offsets[i] = static_cast<int>(i + 1);
+  }
+  out << "<Cells>\n";
+  detail::write_array(out, "connectivity", connectivity);
+  detail::write_array(out, "offsets", offsets);
+  out << "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+  for (std::size_t i = 0; i < points.size(); ++i) out << "1 ";  // VTK_VERTEX
+  out << "\n</DataArray>\n</Cells>\n<PointData Scalars=\"normal_stress\">\n";
+  detail::write_array(out, "normal_stress", normal_stress);
+  detail::write_array(out, "shear_stress", shear_stress);
+  detail::write_array(out, "gap", gap);
+  detail::write_array(out, "area", area);
+  detail::write_array(out, "damage", damage);
+  detail::write_array(out, "normal", normal, 3);
+  out << "</PointData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+  if (!out) throw InvalidArgument("vtk: writing '" + path + "' failed");
+}
+
+}  // namespace blockdem::io

@@ -1,0 +1,50 @@
+// The arch analysis against the minimum thickness of a semicircular arch under its own weight:
+// t/R = 0.1075 (Heyman 1969; Milankovitch 1907), with friction high enough to prevent sliding.
+
+#include <doctest/doctest.h>
+
+#include "blockdem/analysis/arch.hpp"
+#include "blockdem/io/columns.hpp"
+
+using namespace blockdem;
+
+TEST_CASE("arch: below the minimum thickness t/R = 0.1075 it collapses under its own weight, above it stands") {
+  analysis::ArchOptions o;
+  o.voussoirs = 40;
+  o.lambda = 0;
+  o.friction_angle_deg = 40;
+  o.thickness_ratio = 0.10;
+  CHECK_FALSE(analysis::analyse_arch(o).stands);
+  o.thickness_ratio = 0.12;
+  CHECK(analysis::analyse_arch(o).stands);
+}
+
+TEST_CASE("arch: bad options name the option") {
+  analysis::ArchOptions o;
+  o.voussoirs = 1;
+  CHECK_THROWS_WITH_AS(analysis::analyse_arch(o), doctest::Contains("voussoirs"), InvalidArgument);
+  o = {};
+  o.thickness_ratio = 1.5;
+  CHECK_THROWS_WITH_AS(analysis::analyse_arch(o), doctest::Contains("t/R"), InvalidArgument);
+}
+
+TEST_CASE("two-column records: malformed lines are reported with file and line") {
+  const std::string path = "blockdem_test_columns.txt";
+  auto write = [&](const char* text) {
+    std::FILE* f = std::fopen(path.c_str(), "w");
+    std::fputs(text, f);
+    std::fclose(f);
+  };
+  write("time acc\n0 0.1\n0.01 0.2\n0.02 -0.3\n");
+  const auto ok = io::read_two_columns(path);
+  CHECK(ok.x.size() == 3);
+  CHECK(ok.y[2] == -0.3);
+  write("0 0.1\n0.01 abc\n");
+  CHECK_THROWS_WITH_AS(io::read_two_columns(path), doctest::Contains((path + ":2").c_str()), InputError);
+  write("0 0.1\n0.01 0.2\n0.005 0.3\n");
+  CHECK_THROWS_WITH_AS(io::read_two_columns(path), doctest::Contains((path + ":3: the first column must increase").c_str()), InputError);
+  write("0 0.1 7\n");
+  CHECK_THROWS_WITH_AS(io::read_two_columns(path), doctest::Contains("expected two columns"), InputError);
+  std::remove(path.c_str());
+  CHECK_THROWS_WITH_AS(io::read_two_columns("no/such/file.txt"), doctest::Contains("no/such/file.txt: cannot open"), InputError);
+}

@@ -1,0 +1,73 @@
+// Contact detection: face-to-face contacts, tributary areas, subdivision, gaps, separation and interpenetration.
+
+#include <doctest/doctest.h>
+
+#include "../approx.hpp"
+#include "blockdem/contact/elastic.hpp"
+#include "blockdem/damping/none.hpp"
+#include "blockdem/geometry/generators.hpp"
+#include "blockdem/integrate/simulation.hpp"
+#include "blockdem/model/contact_detection.hpp"
+
+using namespace blockdem;
+
+namespace {
+model::Model two_boxes(double lift, double shift = 0) {
+  model::Model m;
+  m.add_block(geometry::make_box(Vec3(-1, -1, -0.5), Vec3(1, 1, 0)), 2000, "base", 0, model::Motion::fixed);
+  m.add_block(geometry::make_box(Vec3(-0.5 + shift, -0.5, lift), Vec3(0.5 + shift, 0.5, 1 + lift)), 2000, "top");
+  return m;
+}
+}  // namespace
+
+TEST_CASE("detection: a box on a box gets CPs at the corners of the overlap, a quarter of the area each") {
+  const auto m = two_boxes(0.0004);
+  const auto c = model::detect_contacts(m.bodies, model::ContactSettings{});
+  REQUIRE(c.size() == 4);
+  for (const auto& k : c) {
+    CHECK(k.area == test::approx(0.25));
+    CHECK(k.gap == test::approx(0.0004));
+    CHECK((k.normal - Vec3(0, 0, 1)).norm() < 1e-12);
+    CHECK(std::abs(std::abs(k.position.x()) - 0.5) < 1e-12);
+  }
+  // Half the top box hangs over the edge at x = 1: the overlap is 0.5 x 1.
+  const auto half = model::detect_contacts(two_boxes(0, 1.0).bodies, model::ContactSettings{});
+  double area = 0;
+  for (const auto& k : half) area += k.area;
+  CHECK(area == test::approx(0.5));
+}
+
+TEST_CASE("detection: subdivision bounds the area of every CP and keeps the total") {
+  model::ContactSettings s;
+  s.max_contact_point_area = 0.01;
+  const auto c = model::detect_contacts(two_boxes(0).bodies, s);
+  double total = 0, largest = 0;
+  for (const auto& k : c) {
+    total += k.area;
+    largest = std::max(largest, k.area);
+  }
+  CHECK(total == test::approx(1.0));
+  CHECK(largest <= 0.01 * (1 + 1e-9));
+  CHECK(c.size() == 121);  // a 10 x 10 grid of cells has 11 x 11 vertices
+}
+
+TEST_CASE("detection: blocks apart beyond the tolerance have no contact; interpenetration at the start is an error") {
+  CHECK(model::detect_contacts(two_boxes(0.002).bodies, model::ContactSettings{}).empty());
+  auto m = two_boxes(-0.01);
+  try {
+    Simulation<damping::None, contact::Elastic> sim(m, damping::None{}, [](int, int) { return contact::Elastic::Parameters(1e9, 1e9); });
+    FAIL("accepted");
+  } catch (const InvalidArgument& e) {
+    const std::string what = e.what();
+    CHECK(what.find("'base' and 'top' interpenetrate") != std::string::npos);
+  }
+}
+
+TEST_CASE("detection: every joint of an arch is found, with zero gaps") {
+  model::Model m;
+  for (const auto& b : geometry::semicircular_arch(20, 1.0, 0.15, 0.5))
+    m.add_block(b.shape, 2000, b.name, 0, b.support ? model::Motion::fixed : model::Motion::free);
+  const auto c = model::detect_contacts(m.bodies, model::ContactSettings{});
+  CHECK(c.size() == 21 * 4);  // 19 joints between voussoirs and 2 springings, 4 corners each
+  for (const auto& k : c) CHECK(std::abs(k.gap) < 1e-12);
+}
