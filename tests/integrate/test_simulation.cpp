@@ -176,3 +176,30 @@ TEST_CASE("simulation: an undamped elastic run conserves energy and is time reve
   CHECK((b.rotation[s.block] - r0).norm() / turn < 1e-9);  // (not angularDistance: its acos floor is 1e-8)
   CHECK(sim.detections() == 1);
 }
+
+namespace {
+/// Energy balance error after a damped free vibration (vertical only) with the given policy.
+template <class Damping>
+double balance_after_decay(Damping damping) {
+  auto s = test::block_on_base(1, 1, 1);
+  s.model.bodies.fixity[s.block] = vertical_only;
+  s.model.bodies.velocity[s.block] = Vec3(0, 0, 1e-2);
+  const double omega = two_pi * 10.0;
+  Simulation<Damping, contact::Elastic> sim(s.model, damping,
+                                            [&](int, int) { return contact::Elastic::Parameters(2000 * omega * omega, 2000 * omega * omega); });
+  sim.set_timestep(1.0 / (10.0 * 400));
+  for (int i = 0; i < 8000; ++i) sim.step();  // 20 cycles
+  const auto e = sim.energy();
+  CHECK(e.viscous > 0);
+  return e.balance_error;
+}
+}  // namespace
+
+TEST_CASE("simulation: the energy balance closes with every damping policy (viscous dissipation accounted)") {
+  CHECK(balance_after_decay(damping::MassProportional::from_damping_ratio(0.05, 10)) < 1e-3);
+  CHECK(balance_after_decay(damping::StiffnessProportional::from_damping_ratio(0.05, 10)) < 1e-3);
+  CHECK(balance_after_decay(damping::Rayleigh::from_two_frequencies(0.03, 1, 0.03, 40)) < 1e-3);
+  damping::MaxwellFitOptions options;
+  options.damping_ratio = 0.05;
+  CHECK(balance_after_decay(damping::to_policy<3>(damping::fit_maxwell(options))) < 1e-3);
+}

@@ -10,8 +10,9 @@ namespace blockdem::damping {
 ///   the Maxwell branches; an empty struct if the policy does not act on springs;
 /// - `spring_stress(state, stiffness, du, dt, active, dissipated) -> double`: the viscous stress (Pa) the policy adds
 ///   to a spring of stiffness (Pa/m) whose elongation grew by du (m) during the step dt (s); with active == false
-///   (joint failed or open) it releases its state and returns 0; adds the energy it dissipated (J/m^2) to
-///   `dissipated`;
+///   (joint failed or open) it releases its state and returns 0; adds the work its elements received (J/m^2) to
+///   `dissipated` (policies with springs of their own also provide `stored_energy(state, stiffness)`, which the
+///   energy report subtracts from that work);
 /// - `velocity_update(v, force, mass, dt, dissipated) -> double`: the central-difference update of one degree of
 ///   freedom, velocity v (m/s or rad/s) at the half step, force (N or N m), mass (kg or kg m^2); adds the energy its
 ///   damping force dissipated (J) to `dissipated`;

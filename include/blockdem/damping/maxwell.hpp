@@ -127,7 +127,10 @@ struct Maxwell {
 
   double spring_stress(ContactState& s, double stiffness, double du, double dt, bool active,
                        double& dissipated) const noexcept {
+    // `dissipated` receives the work done on the branches; what they store (stored_energy) is subtracted when the
+    // energy is reported, so that the loop needs no division.
     double total = 0.0;
+    double work = 0.0;
     if (dt <= 0.0) {  // no time passes (first step, forces recomputed after a detection): no relaxation
       for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) total += active ? s[i] : 0.0;
       return total;
@@ -135,11 +138,11 @@ struct Maxwell {
     for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
       const double old = s[i];
       const double updated = active ? old * decay_[i] + gain_[i] * stiffness * du : 0.0;
-      // Work done on the branch minus the change of its spring energy: what the dashpot dissipated.
-      dissipated += 0.5 * (old + updated) * du - 0.5 * (updated * updated - old * old) * inverse_alpha_[i] / stiffness;
+      work += 0.5 * (old + updated) * du;
       s[i] = updated;
       total += updated;
     }
+    dissipated += work;
     return total;
   }
   constexpr double velocity_update(double v, double force, double mass, double dt, double&) const noexcept {

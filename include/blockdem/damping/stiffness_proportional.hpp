@@ -27,12 +27,15 @@ struct StiffnessProportional {
 
   // DampingPolicy: a dashpot beta k on each spring, at the rate of the last step (the lagged velocity for which
   // eq. 11 is the exact stability limit of the central-difference scheme).
-  using ContactState = NoState;
-  constexpr double spring_stress(ContactState&, double stiffness, double du, double dt, bool active,
+  /// The dashpot stress of the previous step: its work is completed with this step's increment, so that the
+  /// dissipation booked is that of the central-difference kick, 1/2 stress (du_n + du_n+1), exactly.
+  using ContactState = double;
+  constexpr double spring_stress(ContactState& previous, double stiffness, double du, double dt, bool active,
                                  double& dissipated) const noexcept {
-    if (!active || dt <= 0.0) return 0.0;
-    const double stress = beta * stiffness * du / dt;
-    dissipated += stress * du;
+    if (dt <= 0.0) return active ? previous : 0.0;  // no time passes (forces recomputed after a detection)
+    const double stress = active ? beta * stiffness * du / dt : 0.0;
+    dissipated += 0.5 * (previous + stress) * du;
+    previous = stress;
     return stress;
   }
   constexpr double velocity_update(double v, double force, double mass, double dt, double&) const noexcept {

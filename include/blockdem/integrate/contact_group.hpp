@@ -29,7 +29,6 @@ struct ContactGroup {
   std::vector<History> history;
   std::vector<SpringState> spring_state;
   std::vector<Vec3> force;               // N, world frame, on B (A gets the opposite)
-  std::vector<Vec3> moment_a, moment_b;  // N m about the centroids of A and B
   std::vector<double> slip_dissipation;  // J, accumulated
   std::vector<double> viscous_dissipation;  // J, accumulated
 
@@ -41,8 +40,8 @@ struct ContactGroup {
 
   void clear() {
     body_a.clear(); body_b.clear(); property.clear(); arm_a.clear(); arm_b.clear(); normal_a.clear();
-    tangent_a.clear(); area.clear(); history.clear(); spring_state.clear(); force.clear(); moment_a.clear();
-    moment_b.clear(); slip_dissipation.clear(); viscous_dissipation.clear();
+    tangent_a.clear(); area.clear(); history.clear(); spring_state.clear(); force.clear();
+    slip_dissipation.clear(); viscous_dissipation.clear();
   }
 
   /// Builds the gather lists for `blocks` blocks, in increasing CP order so that sums are reproducible.

@@ -11,6 +11,7 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -18,6 +19,7 @@
 #include <vector>
 
 #include "blockdem/contact/concepts.hpp"
+#include "blockdem/contact/elastic.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
@@ -352,13 +354,22 @@ class Simulation {
     // Property sets are kept (CP property indices stay valid); new ones are appended.
     std::apply([&](auto&... g) { ((g.properties = std::get<std::remove_cvref_t<decltype(g)>>(old).properties), ...); }, groups_);
     const double match = std::max(settings_.tolerance, 0.25 * std::sqrt(settings_.max_contact_point_area));
+    // Energy dissipated at CPs that will not be taken over is kept in the totals.
+    std::apply([&](auto&... g) { ((taken_over_[law_index<typename std::remove_cvref_t<decltype(g)>::LawType>()].assign(g.size(), 0)), ...); }, old);
+    double carried_slip = 0, carried_viscous = 0, old_slip = 0, old_viscous = 0;
+    std::apply([&](const auto&... g) {
+      ((old_slip += std::accumulate(g.slip_dissipation.begin(), g.slip_dissipation.end(), 0.0),
+        old_viscous += std::accumulate(g.viscous_dissipation.begin(), g.viscous_dissipation.end(), 0.0)), ...);
+    }, old);
     std::map<std::pair<int, int>, Properties> chosen;
     for (const auto& c : candidates) {
       const int ta = b.joint_tag[c.a], tb = b.joint_tag[c.b];
       auto it = chosen.find({ta, tb});
       if (it == chosen.end()) it = chosen.emplace(std::make_pair(ta, tb), properties_(ta, tb)).first;
-      std::visit([&](const auto& params) { add_contact(params, c, old, keep_history, match); }, it->second);
+      std::visit([&](const auto& params) { add_contact(params, c, old, keep_history, match, carried_slip, carried_viscous); }, it->second);
     }
+    retired_slip_ += old_slip - carried_slip;
+    retired_viscous_ += old_viscous - carried_viscous;
     for_each_group([&](auto& g) { g.build_gather_lists(b.size()); });
     detected_position_ = b.position;
     detected_orientation_ = b.orientation;
@@ -367,7 +378,8 @@ class Simulation {
   }
 
   template <class Params>
-  void add_contact(const Params& params, const model::ContactCandidate& c, Groups& old, bool keep_history, double match) {
+  void add_contact(const Params& params, const model::ContactCandidate& c, Groups& old, bool keep_history, double match,
+                   double& carried_slip, double& carried_viscous) {
     using L = std::tuple_element_t<index_of_parameters<Params>(), std::tuple<Laws...>>;
     auto& g = std::get<Group<L>>(groups_);
     const auto& b = model_->bodies;
@@ -394,17 +406,23 @@ class Simulation {
     double slip = 0, viscous = 0;
     if (keep_history) {
       const auto& o = std::get<Group<L>>(old);
+      auto& taken = taken_over_[law_index<L>()];
       for (std::size_t k = 0; k < o.size(); ++k) {
-        if (o.body_a[k] != c.a || o.body_b[k] != c.b) continue;
+        if (taken[k] || o.body_a[k] != c.a || o.body_b[k] != c.b) continue;
         // The old CP's material points on A and on B have drifted apart by the slip since the last detection; the
-        // new CP sits at a vertex of one of the two faces, so it is near one of them.
+        // new CP sits at a vertex of one of the two faces, so it is near one of them within the contact plane
+        // (along the normal they differ by the overlap).
+        auto in_plane = [&](const Vec3& d) { return (d - d.dot(c.normal) * c.normal).norm(); };
         const Vec3 on_a = b.position[c.a] + ra * o.arm_a[k];
         const Vec3 on_b = b.position[c.b] + rb * o.arm_b[k];
-        if (std::min((on_a - c.position).norm(), (on_b - c.position).norm()) > match) continue;
+        if (std::min(in_plane(on_a - c.position), in_plane(on_b - c.position)) > match) continue;
+        taken[k] = 1;
         h = o.history[k];
         spring = o.spring_state[k];
         slip = o.slip_dissipation[k];
         viscous = o.viscous_dissipation[k];
+        carried_slip += slip;
+        carried_viscous += viscous;
         // Shear components follow the new tangent directions.
         if constexpr (requires { h.shear; }) {
           const Vec3 t1_old = ra * o.tangent_a[k];
@@ -419,8 +437,6 @@ class Simulation {
     g.history.push_back(h);
     g.spring_state.push_back(spring);
     g.force.push_back(Vec3::Zero());
-    g.moment_a.push_back(Vec3::Zero());
-    g.moment_b.push_back(Vec3::Zero());
     g.slip_dissipation.push_back(slip);
     g.viscous_dissipation.push_back(viscous);
   }
@@ -451,8 +467,6 @@ class Simulation {
     to.history = from.history;
     to.spring_state.assign(from.size(), typename To::SpringState{});
     to.force = from.force;
-    to.moment_a = from.moment_a;
-    to.moment_b = from.moment_b;
     to.slip_dissipation.assign(from.size(), 0.0);
     to.viscous_dissipation.assign(from.size(), 0.0);
     to.build_gather_lists(model_->bodies.size());
@@ -470,7 +484,7 @@ class Simulation {
     const Vec3* const omega = b.angular_velocity.data();
     const auto count = static_cast<std::ptrdiff_t>(g.size());
     const Damping& damping = damping_;
-#pragma omp parallel for schedule(static) if (count > 4096)
+#pragma omp parallel for schedule(static) if (count > 1024)
     for (std::ptrdiff_t kk = 0; kk < count; ++kk) {
       const auto k = static_cast<std::size_t>(kk);
       const std::uint32_t a = g.body_a[k];
@@ -506,12 +520,11 @@ class Simulation {
       const double s1 = r.shear_stress[0] + damping.spring_stress(spring[1], ks, -du_s[0], increment_dt, active, dissipated);
       const double s2 = r.shear_stress[1] + damping.spring_stress(spring[2], ks, -du_s[1], increment_dt, active, dissipated);
       const double area = g.area[k];
-      const Vec3 f = area * (sn * n + s1 * t1 + s2 * t2);
-      g.force[k] = f;
-      g.moment_b[k] = arm_b.cross(f);
-      g.moment_a[k] = -arm_a.cross(f);
-      g.slip_dissipation[k] += area * r.dissipated;
-      g.viscous_dissipation[k] += area * dissipated;
+      g.force[k] = area * (sn * n + s1 * t1 + s2 * t2);
+      // Only what can be non-zero is stored: a law or a policy that never dissipates costs no memory traffic here.
+      if constexpr (!std::is_same_v<L, contact::Elastic>) g.slip_dissipation[k] += area * r.dissipated;
+      if constexpr (!std::is_same_v<typename Damping::ContactState, damping::NoState>)
+        g.viscous_dissipation[k] += area * dissipated;
     }
   }
 
@@ -524,24 +537,24 @@ class Simulation {
     const Vec3 base_velocity = model_->base_velocity(time_ + 0.5 * dt);
     if (move) base_displacement_ += dt * base_velocity;
     const Damping& damping = damping_;
-#pragma omp parallel for schedule(static) if (count > 4096)
+#pragma omp parallel for schedule(static) if (count > 1024)
     for (std::ptrdiff_t ii = 0; ii < count; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
+      // Gather in a fixed order. Moments about the centroid come from the CP's arm in this block's body frame:
+      // sum_k (arm_k x f_k) = R sum_k (arm_k x R^T f_k), one rotation per block instead of one per CP.
       Vec3 force = Vec3::Zero();
-      Vec3 moment = Vec3::Zero();
+      Vec3 moment_body = Vec3::Zero();
+      const Mat3 rt = b.rotation[i].transpose();
       for_each_group([&](const auto& g) {
         for (std::uint32_t e = g.first[i]; e < g.first[i + 1]; ++e) {
           const std::uint32_t code = g.entry[e];
           const std::uint32_t k = code >> 1;
-          if (code & 1u) {
-            force += g.force[k];
-            moment += g.moment_b[k];
-          } else {
-            force -= g.force[k];
-            moment += g.moment_a[k];
-          }
+          const Vec3 f = (code & 1u) ? Vec3(g.force[k]) : Vec3(-g.force[k]);
+          force += f;
+          moment_body += ((code & 1u) ? g.arm_b[k] : g.arm_a[k]).cross(rt * f);
         }
       });
+      const Vec3 moment = b.rotation[i] * moment_body;
       const model::Motion motion = b.motion[i];
       if (motion == model::Motion::base) {
         b.force[i] = force;
@@ -609,6 +622,8 @@ class Simulation {
 
   EnergyReport energy_terms() const {
     EnergyReport e;
+    e.slip = retired_slip_;
+    e.viscous = retired_viscous_;
     const auto& b = model_->bodies;
     for (std::size_t i = 0; i < b.size(); ++i) {
       e.kinetic += kinetic_[i];
@@ -622,9 +637,12 @@ class Simulation {
         const auto& p = g.properties[g.property[k]];
         double stored = L::stored_energy(p, g.history[k]);
         if constexpr (requires { damping_.stored_energy(g.spring_state[k][0], 1.0); }) {
-          stored += damping_.stored_energy(g.spring_state[k][0], L::normal_stiffness(p)) +
-                    damping_.stored_energy(g.spring_state[k][1], L::shear_stiffness(p)) +
-                    damping_.stored_energy(g.spring_state[k][2], L::shear_stiffness(p));
+          // The loop accumulated the work done on the damping springs; what they still store is not dissipated.
+          const double branches = damping_.stored_energy(g.spring_state[k][0], L::normal_stiffness(p)) +
+                                  damping_.stored_energy(g.spring_state[k][1], L::shear_stiffness(p)) +
+                                  damping_.stored_energy(g.spring_state[k][2], L::shear_stiffness(p));
+          stored += branches;
+          e.viscous -= g.area[k] * branches;
         }
         e.elastic += g.area[k] * stored;
         e.slip += g.slip_dissipation[k];
@@ -652,6 +670,8 @@ class Simulation {
   std::vector<Quaternion> detected_orientation_;
   EnergyReport energy0_;
   bool energy_reference_pending_ = true;
+  double retired_slip_ = 0, retired_viscous_ = 0;  // J, dissipated at CPs that no longer exist
+  std::array<std::vector<std::uint8_t>, sizeof...(Laws)> taken_over_;  // old CPs already matched, during a detection
 };
 
 }  // namespace blockdem
