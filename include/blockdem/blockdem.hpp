@@ -18,6 +18,7 @@
 #include "blockdem/motion/processing.hpp"
 #include "blockdem/motion/readers.hpp"
 #include "blockdem/motion/record.hpp"
+#include "blockdem/motion/spectrum.hpp"
 #include "blockdem/motion/truncation.hpp"
 #include "blockdem/motion/writers.hpp"
 #include "blockdem/solve/levenberg_marquardt.hpp"

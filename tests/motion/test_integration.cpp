@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <string>
 
 #include "blockdem/core/units.hpp"
 #include "blockdem/motion/integration.hpp"
@@ -57,11 +58,11 @@ TEST_CASE("integration: the real PEER records reproduce the PGV and PGD of their
     return;
   }
   struct Case {
-    const char* file;
+    std::string file;
     double pgv_cm_s;
     double pgd_cm;
   };
-  for (const Case c : {Case{"ImperialValley1979_ElCentroArray4_140.AT2", 39.6246, 25.1238},
+  for (const Case& c : {Case{"ImperialValley1979_ElCentroArray4_140.AT2", 39.6246, 25.1238},
                        Case{"ImperialValley1979_ElCentroArray4_230.AT2", 80.3737, 74.2297}}) {
     CAPTURE(c.file);
     const auto peaks = peak_values(read_record(data / c.file));

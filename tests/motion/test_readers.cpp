@@ -52,11 +52,11 @@ TEST_CASE("readers: the two real PEER records reproduce the PGA of their headers
     return;
   }
   struct Case {
-    const char* file;
+    std::string file;
     double header_pga_g;
     double first_sample_g;
   };
-  for (const Case c : {Case{"ImperialValley1979_ElCentroArray4_140.AT2", 0.48431, -0.2964875e-3},
+  for (const Case& c : {Case{"ImperialValley1979_ElCentroArray4_140.AT2", 0.48431, -0.2964875e-3},
                        Case{"ImperialValley1979_ElCentroArray4_230.AT2", 0.37043, -0.3183268e-2}}) {
     CAPTURE(c.file);
     const auto record = read_record(shared_data / c.file);

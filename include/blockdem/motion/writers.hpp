@@ -1,5 +1,5 @@
 #pragma once
-// CSV output of records. A record is written with its velocity, displacement and Arias intensity
+// CSV output of records and spectra. A record is written with its velocity, displacement and Arias intensity
 // (columns time_s,acceleration_m_s2,velocity_m_s,displacement_m,arias_m_s) and reads back with read_record; '#'
 // comment lines at the top name the record and say when it is synthetic.
 
@@ -10,6 +10,7 @@
 #include "blockdem/motion/arias.hpp"
 #include "blockdem/motion/integration.hpp"
 #include "blockdem/motion/record.hpp"
+#include "blockdem/motion/spectrum.hpp"
 
 namespace blockdem::motion {
 
@@ -37,6 +38,16 @@ inline void write_record_csv(std::ostream& out, const Record& record) {
     out << detail::csv_number(record.time(i)) << ',' << detail::csv_number(record.acceleration[i]) << ','
         << detail::csv_number(motion.velocity[i]) << ',' << detail::csv_number(motion.displacement[i]) << ','
         << detail::csv_number(arias[i]) << '\n';
+}
+
+inline void write_spectrum_csv(std::ostream& out, const ResponseSpectrum& spectrum, const Record& record) {
+  detail::write_provenance(out, record);
+  out << "# damping ratio: " << detail::csv_number(spectrum.damping_ratio) << '\n';
+  out << "period_s,sd_m,psv_m_s,psa_m_s2,psa_g\n";
+  for (std::size_t j = 0; j < spectrum.period.size(); ++j)
+    out << detail::csv_number(spectrum.period[j]) << ',' << detail::csv_number(spectrum.sd[j]) << ','
+        << detail::csv_number(spectrum.psv[j]) << ',' << detail::csv_number(spectrum.psa[j]) << ','
+        << detail::csv_number(spectrum.psa[j] / standard_gravity) << '\n';
 }
 
 }  // namespace blockdem::motion
