@@ -16,6 +16,7 @@
 #include "blockdem/motion/butterworth.hpp"
 #include "blockdem/motion/integration.hpp"
 #include "blockdem/motion/processing.hpp"
+#include "blockdem/motion/pulse.hpp"
 #include "blockdem/motion/readers.hpp"
 #include "blockdem/motion/record.hpp"
 #include "blockdem/motion/spectrum.hpp"
