@@ -21,5 +21,6 @@
 #include "blockdem/motion/record.hpp"
 #include "blockdem/motion/spectrum.hpp"
 #include "blockdem/motion/truncation.hpp"
+#include "blockdem/motion/wavelet_truncation.hpp"
 #include "blockdem/motion/writers.hpp"
 #include "blockdem/solve/levenberg_marquardt.hpp"
