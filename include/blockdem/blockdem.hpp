@@ -20,6 +20,7 @@
 #include "blockdem/motion/readers.hpp"
 #include "blockdem/motion/record.hpp"
 #include "blockdem/motion/spectrum.hpp"
+#include "blockdem/motion/synthetic.hpp"
 #include "blockdem/motion/truncation.hpp"
 #include "blockdem/motion/wavelet_truncation.hpp"
 #include "blockdem/motion/writers.hpp"
