@@ -175,6 +175,10 @@ TEST_CASE("readers: plain text with two columns takes dt and the start time from
   const auto fine = parse_record(rounded.str(), "rounded.txt");
   CHECK(fine.dt == doctest::Approx(1.0 / 300.0).epsilon(1e-3));
 
+  // Shortest-form times ("0", "0.01", "0.015") are exact: an integer "0" must not widen the tolerance.
+  CHECK(error_of([&] { parse_record("# units: g\n0 1\n0.005 2\n0.01 3\n0.0165 4\n0.02 5\n", "g.txt"); }) ==
+        "g.txt:5: time step 0.0065 differs from 0.005 (non-uniform time column)");
+
   const auto path = (data_dir / "nonuniform.txt").string();
   CHECK(error_of([&] { read_record(path); }) ==
         path + ":7: time step 0.01 differs from 0.005 (non-uniform time column)");

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -365,7 +366,7 @@ inline Record parse_plain(const std::vector<TextLine>& lines, std::string_view n
   std::vector<double> times;
   std::vector<double> samples;
   std::vector<int> sample_lines;
-  double time_resolution = 0.0;
+  double time_resolution = std::numeric_limits<double>::infinity();  // finest digit printed in the time column
 
   for (const auto& line : lines) {
     const std::string_view text = trim(line.text);
@@ -443,7 +444,7 @@ inline Record parse_plain(const std::vector<TextLine>& lines, std::string_view n
     sample_lines.push_back(line.number);
     if (time_column) {
       times.push_back(*to_number(words[*time_column]));
-      time_resolution = std::max(time_resolution, printed_resolution(words[*time_column]));
+      time_resolution = std::min(time_resolution, printed_resolution(words[*time_column]));
     }
   }
   if (samples.size() < 2)
@@ -460,8 +461,8 @@ inline Record parse_plain(const std::vector<TextLine>& lines, std::string_view n
     std::vector<double> sorted = steps;
     std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
     const double typical = sorted[sorted.size() / 2];  // the median step: a few bad steps cannot move it
-    // A step may differ from it by the rounding of the printed times (one unit of the last printed digit on each
-    // of two times), nothing more.
+    // A step may differ from it by the rounding of the printed times, nothing more: up to one unit of the finest
+    // digit the column prints (a time "0" or "0.01" among "0.015"s is exact, not rounded to whole units).
     const double tolerance = 1e-3 * std::abs(typical) + 2.0 * time_resolution;
     for (std::size_t i = 1; i < n; ++i) {
       const double step = steps[i - 1];

@@ -263,13 +263,12 @@ inline WaveletTruncationResult wavelet_truncation(const Record& record, const Wa
   result.limits = {options.max_velocity.value_or(peaks.pgv), options.max_acceleration.value_or(peaks.pga),
                    options.max_displacement.value_or(peaks.pgd)};
   const auto& limits = result.limits;
-  const auto meets_limits = [&](const MavroeidisPapageorgiouPulse& unit, double amplitude) {
-    if (!(amplitude > 0.0)) return false;
-    const auto p = pulse_peaks(unit);
+  // Peaks scale with the amplitude, so a unit pulse's peaks decide every amplitude at once.
+  const auto within = [&](const PulsePeaks& unit, double amplitude) {
     constexpr double slack = 1.0 + 1e-9;
-    return amplitude * p.velocity <= limits.velocity * slack &&
-           amplitude * p.acceleration <= limits.acceleration * slack &&
-           amplitude * p.displacement <= limits.displacement * slack;
+    return amplitude > 0.0 && amplitude * unit.velocity <= limits.velocity * slack &&
+           amplitude * unit.acceleration <= limits.acceleration * slack &&
+           amplitude * unit.displacement <= limits.displacement * slack;
   };
   const bool spectral = options.amplitude == PulseAmplitude::spectral;
 
@@ -285,12 +284,6 @@ inline WaveletTruncationResult wavelet_truncation(const Record& record, const Wa
     for (int k = 0; k < phases; ++k)
       unit_peaks[static_cast<std::size_t>(g * phases + k)] =
           pulse_peaks(MavroeidisPapageorgiouPulse{1.0, gamma_grid.at(g), period, 0.0, phase_at(k)});
-  const auto within = [&](const PulsePeaks& p, double amplitude) {
-    constexpr double slack = 1.0 + 1e-9;
-    return amplitude > 0.0 && amplitude * p.velocity <= limits.velocity * slack &&
-           amplitude * p.acceleration <= limits.acceleration * slack &&
-           amplitude * p.displacement <= limits.displacement * slack;
-  };
 
   double best_r = -std::numeric_limits<double>::infinity();
   double best_gamma = 0.0, best_t0 = 0.0, best_phase = 0.0;
@@ -326,7 +319,7 @@ inline WaveletTruncationResult wavelet_truncation(const Record& record, const Wa
       return -std::numeric_limits<double>::infinity();
     const auto fit = correlation.fit(correlation.sums(gamma, t0), phase);
     const double amplitude = spectral ? pulse_amplitude(result.psv_at_period, gamma, xi) : fit.slope;
-    if (!meets_limits(MavroeidisPapageorgiouPulse{1.0, gamma, period, 0.0, phase}, amplitude))
+    if (!within(pulse_peaks(MavroeidisPapageorgiouPulse{1.0, gamma, period, 0.0, phase}), amplitude))
       return -std::numeric_limits<double>::infinity();
     return fit.correlation;
   };
