@@ -233,7 +233,8 @@ int run_truncate(const Input& input, TruncateOptions o) {
     if (!o.pulse_out.empty()) {
       auto out = open_output(o.pulse_out);
       const auto velocity = integrate(record).velocity;
-      out << "# record: " << record.name << "\n# fitted M&P pulse (eq. 31) against the record's velocity\n"
+      write_provenance(out, record);
+      out << "# fitted M&P pulse (eq. 31) against the record's velocity\n"
           << "time_s,record_velocity_m_s,pulse_velocity_m_s\n";
       for (std::size_t i = 0; i < record.size(); ++i)
         out << fmt::format("{:.9g},{:.9g},{:.9g}\n", record.time(i), velocity[i], fit.pulse.velocity(record.time(i)));
