@@ -2,7 +2,7 @@
 // acceleration lambda g? With --find-collapse, the collapse multiplier by bisection to 0.005.
 //
 //   arch --voussoirs 40 --thickness-ratio 0.15 --radius 1 --depth 0.5 --friction-angle 40 --lambda 0.1
-//        [--find-collapse] [--json]
+//        [--find-collapse] [--json] [--vtk PREFIX]
 //
 // Exit status: 0 on success, 2 on bad input.
 
@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
   app.add_option("--normal-stiffness", o.normal_stiffness, "joint normal stiffness, Pa/m (shear: half)")->capture_default_str();
   app.add_flag("--find-collapse", find_collapse, "find the collapse multiplier lambda by bisection to 0.005");
   app.add_flag("--json", json, "print a JSON object");
+  app.add_option("--vtk", o.vtk_prefix, "write PREFIX_blocks.vtu and PREFIX_contacts.vtu (final state) for ParaView");
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -42,7 +43,9 @@ int main(int argc, char** argv) {
   try {
     o.validate();
     const auto r = analysis::analyse_arch(o);
-    const double lambda_collapse = find_collapse ? analysis::collapse_multiplier(o) : -1.0;
+    auto bisection = o;
+    bisection.vtk_prefix.clear();
+    const double lambda_collapse = find_collapse ? analysis::collapse_multiplier(bisection) : -1.0;
     if (json) {
       io::JsonObject out;
       out.add("stands", r.stands)

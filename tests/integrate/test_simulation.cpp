@@ -203,3 +203,17 @@ TEST_CASE("simulation: the energy balance closes with every damping policy (visc
   options.damping_ratio = 0.05;
   CHECK(balance_after_decay(damping::to_policy<3>(damping::fit_maxwell(options))) < 1e-3);
 }
+
+TEST_CASE("simulation: bad input names the parameter, the block or the allowed range") {
+  auto s = test::block_on_base(1, 1, 1);
+  Simulation<damping::None, contact::Elastic> sim(s.model, damping::None{}, [](int, int) { return contact::Elastic::Parameters(1e9, 1e9); });
+  CHECK_THROWS_WITH_AS(sim.set_timestep(2 * sim.critical_timestep()), doctest::Contains("exceeds the critical timestep"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(sim.set_timestep(-1), doctest::Contains("timestep must be > 0"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(contact::Elastic::Parameters(0, 1e9), doctest::Contains("normal stiffness must be > 0 Pa/m"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(contact::MohrCoulomb::Parameters(1e9, -1, 0, 0, 0.5), doctest::Contains("shear stiffness must be > 0 Pa/m"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(contact::MohrCoulomb::Parameters(1e9, 1e9, 0, 0, 2.0), doctest::Contains("friction angle must be in [0, 90)"), InvalidArgument);
+  model::ContactSettings bad;
+  bad.tolerance = 0;
+  CHECK_THROWS_WITH_AS((Simulation<damping::None, contact::Elastic>(s.model, damping::None{}, [](int, int) { return contact::Elastic::Parameters(1e9, 1e9); }, bad)),
+                       doctest::Contains("tolerance must be > 0"), InvalidArgument);
+}

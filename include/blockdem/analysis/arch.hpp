@@ -14,6 +14,7 @@
 #include "blockdem/damping/local.hpp"
 #include "blockdem/geometry/generators.hpp"
 #include "blockdem/integrate/simulation.hpp"
+#include "blockdem/io/vtk.hpp"
 
 namespace blockdem::analysis {
 
@@ -29,6 +30,7 @@ struct ArchOptions {
   double unbalanced_tolerance = 1e-5;
   double collapse_displacement = 0; // m: a voussoir moving this far means collapse (0: a quarter of the thickness)
   long long max_steps = 400000;
+  std::string vtk_prefix;           // if set: <prefix>_blocks.vtu and <prefix>_contacts.vtu at the end
 
   void validate() const {
     auto check = [](bool ok, const char* what) {
@@ -90,6 +92,12 @@ inline ArchResult analyse_arch(const ArchOptions& o) {
     }
   }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!o.vtk_prefix.empty()) {
+    std::vector<double> displacement(model.bodies.size());
+    for (std::size_t i = 0; i < model.bodies.size(); ++i) displacement[i] = (model.bodies.position[i] - initial[i]).norm();
+    io::write_blocks_vtu(o.vtk_prefix + "_blocks.vtu", model, {{"displacement", displacement}});
+    io::write_contacts_vtu(o.vtk_prefix + "_contacts.vtu", sim);
+  }
   return r;
 }
 
