@@ -14,6 +14,7 @@
 
 #include "blockdem/analysis/arch.hpp"
 #include "blockdem/io/json.hpp"
+#include "cli.hpp"
 
 int main(int argc, char** argv) {
   using namespace blockdem;
@@ -32,14 +33,7 @@ int main(int argc, char** argv) {
   app.add_flag("--find-collapse", find_collapse, "find the collapse multiplier lambda by bisection to 0.005");
   app.add_flag("--json", json, "print a JSON object");
   app.add_option("--vtk", o.vtk_prefix, "write PREFIX_blocks.vtu and PREFIX_contacts.vtu (final state) for ParaView");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return 2;
-  }
+  if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
   try {
     o.validate();
     const auto r = analysis::analyse_arch(o);

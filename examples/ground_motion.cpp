@@ -36,13 +36,14 @@
 #include "blockdem/motion/truncation.hpp"
 #include "blockdem/motion/wavelet_truncation.hpp"
 #include "blockdem/motion/writers.hpp"
+#include "cli.hpp"
 
 namespace {
 
 using namespace blockdem;
 using namespace blockdem::motion;
 
-constexpr int exit_bad_input = 2;
+using programs::exit_bad_input;
 
 /// The record every subcommand reads: FILE with --units and --dt, or --synthetic.
 struct Input {
@@ -349,16 +350,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   process->add_option("--out", p.out, "CSV file for the processed record");
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return exit_bad_input;
-  }
+  if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
 
   try {
     if (info->parsed()) return run_info(info_input);

@@ -22,13 +22,14 @@
 #include "blockdem/damping/maxwell_fit.hpp"
 #include "blockdem/damping/rayleigh.hpp"
 #include "blockdem/io/json.hpp"
+#include "cli.hpp"
 
 namespace {
 
 using namespace blockdem;
 using damping::MaxwellFitResult;
 
-constexpr int exit_bad_input = 2;
+using programs::exit_bad_input;
 
 std::vector<double> column(const MaxwellFitResult& fit, double (*get)(const MaxwellFitResult&, int)) {
   std::vector<double> values;
@@ -157,16 +158,7 @@ int main(int argc, char** argv) {
   app.add_option("--rayleigh", rayleigh_hz, "--curve: the two frequencies (Hz) of the Rayleigh curve (default: the band)")
       ->expected(2);
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return exit_bad_input;
-  }
+  if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
 
   try {
     options.lower_hz = band[0];

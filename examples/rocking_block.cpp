@@ -18,6 +18,7 @@
 #include "blockdem/analysis/rocking.hpp"
 #include "blockdem/io/columns.hpp"
 #include "blockdem/io/json.hpp"
+#include "cli.hpp"
 
 int main(int argc, char** argv) {
   using namespace blockdem;
@@ -39,14 +40,7 @@ int main(int argc, char** argv) {
   app.add_flag("--in-g", in_g, "the history's accelerations are in g");
   app.add_option("--out", out_path, "write time_s,rotation_rad,base_acceleration_m_s2 to this CSV file");
   app.add_flag("--json", json, "print a JSON object");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return 2;
-  }
+  if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
   try {
     io::TwoColumns record;
     if (!history.empty()) {

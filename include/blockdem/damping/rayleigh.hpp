@@ -5,6 +5,8 @@
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/units.hpp"
 #include "blockdem/damping/concepts.hpp"
+#include "blockdem/damping/mass_proportional.hpp"
+#include "blockdem/damping/stiffness_proportional.hpp"
 
 namespace blockdem::damping {
 
@@ -30,24 +32,18 @@ struct Rayleigh {
 
   /// Reduction of the critical timestep by the stiffness-proportional part (eq. 11).
   constexpr double timestep_factor(double omega_max) const noexcept {
-    const double z = 0.5 * beta * omega_max;
-    return cmath::sqrt(1.0 + z * z) - z;
+    return StiffnessProportional{beta}.timestep_factor(omega_max);
   }
 
-  // DampingPolicy: the mass part on every degree of freedom, the stiffness part as dashpots on the springs.
-  /// The dashpot stress of the previous step: its work is completed with this step's increment, so that the
-  /// dissipation booked is that of the central-difference kick, 1/2 stress (du_n + du_n+1), exactly.
-  using ContactState = double;
+  // DampingPolicy: the mass part on every degree of freedom, the stiffness part as dashpots on the springs;
+  // each is the policy of its own file.
+  using ContactState = StiffnessProportional::ContactState;
   constexpr double spring_stress(ContactState& previous, double stiffness, double du, double dt, bool active,
                                  double& dissipated) const noexcept {
-    if (dt <= 0.0) return active ? previous : 0.0;  // no time passes (forces recomputed after a detection)
-    const double stress = active ? beta * stiffness * du / dt : 0.0;
-    dissipated += 0.5 * (previous + stress) * du;
-    previous = stress;
-    return stress;
+    return StiffnessProportional{beta}.spring_stress(previous, stiffness, du, dt, active, dissipated);
   }
   constexpr double velocity_update(double v, double force, double mass, double dt, double& dissipated) const noexcept {
-    return mass_damped_velocity_update(alpha, v, force, mass, dt, dissipated);
+    return MassProportional{alpha}.velocity_update(v, force, mass, dt, dissipated);
   }
 };
 
