@@ -8,6 +8,7 @@
 #include "blockdem/contact/mohr_coulomb.hpp"
 #include "blockdem/core/constexpr_math.hpp"
 #include "blockdem/core/error.hpp"
+#include "blockdem/core/random.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/core/units.hpp"
 #include "blockdem/damping/concepts.hpp"

@@ -20,6 +20,7 @@
 
 #include "blockdem/core/constexpr_math.hpp"
 #include "blockdem/core/error.hpp"
+#include "blockdem/core/random.hpp"
 #include "blockdem/core/units.hpp"
 #include "blockdem/damping/maxwell.hpp"
 #include "blockdem/solve/levenberg_marquardt.hpp"
@@ -292,19 +293,6 @@ class MaxwellFitProblem {
   OrderingMap ordering_;
 };
 
-/// SplitMix64: a small deterministic generator for the restarts, usable in constant expressions.
-constexpr std::uint64_t splitmix64(std::uint64_t& state) noexcept {
-  std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-  return z ^ (z >> 31);
-}
-
-/// Uniform in [-1, 1).
-constexpr double uniform_symmetric(std::uint64_t& state) noexcept {
-  return static_cast<double>(splitmix64(state) >> 11) * 0x1.0p-52 - 1.0;
-}
-
 constexpr double logit(double p) noexcept { return cmath::log(p / (1.0 - p)); }
 
 /// The start of the paper: centres uniform on the log scale (s_r = (r - 1/2)/N), each branch with a peak ratio
@@ -340,7 +328,7 @@ constexpr MaxwellFitResult fit_maxwell_branches(const MaxwellFitOptions& options
   options.validate();
   const MaxwellFitProblem<N> problem(options);
   const auto start = initial_parameters<N>(options);
-  std::uint64_t rng = options.seed;
+  SplitMix64 rng(options.seed);
 
   solve::Vector<2 * N> best = start;
   solve::Summary best_summary;
@@ -351,8 +339,8 @@ constexpr MaxwellFitResult fit_maxwell_branches(const MaxwellFitOptions& options
     if (attempt > 0) {  // a small random restart around the log-uniform start
       ++restarts;
       for (int r = 0; r < N; ++r) {
-        x[r] += 0.5 * uniform_symmetric(rng);
-        x[N + r] += 0.3 * uniform_symmetric(rng);
+        x[r] += 0.5 * rng.uniform_symmetric();
+        x[N + r] += 0.3 * rng.uniform_symmetric();
       }
     }
     const auto summary = solve::levenberg_marquardt(problem, x, options.solver);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "blockdem/core/error.hpp"
+#include "blockdem/core/random.hpp"
 #include "blockdem/core/units.hpp"
 #include "blockdem/motion/butterworth.hpp"
 #include "blockdem/motion/integration.hpp"
@@ -41,31 +42,6 @@ struct SyntheticRecordSpec {
   std::uint64_t seed = 20090406;
 };
 
-namespace detail {
-
-/// SplitMix64 (Steele, Lea and Flood 2014): a fixed, portable stream; the standard distributions are not portable.
-class SplitMix64 {
- public:
-  explicit SplitMix64(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ULL);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-    return z ^ (z >> 31);
-  }
-  /// Uniform in (0, 1).
-  double uniform() { return (static_cast<double>(next() >> 11) + 0.5) * 0x1.0p-53; }
-  /// Standard normal (Box-Muller).
-  double normal() {
-    const double r = std::sqrt(-2.0 * std::log(uniform()));
-    return r * std::cos(two_pi * uniform());
-  }
-
- private:
-  std::uint64_t state_;
-};
-
-}  // namespace detail
 
 /// Generates the record of `spec`. Throws InvalidArgument for non-positive targets or a spec whose peaks cannot be
 /// met (the solve does not converge).
@@ -87,7 +63,7 @@ inline Record synthetic_record(const SyntheticRecordSpec& spec) {
     a_pulse[i] = pulse.acceleration(shape.time(i));
     a_long[i] = long_pulse.acceleration(shape.time(i));
   }
-  detail::SplitMix64 random(spec.seed);
+  SplitMix64 random(spec.seed);
   for (double& x : a_noise) x = random.normal();
   const ButterworthFilter low(FilterType::lowpass, 4, spec.noise_high_hz, spec.dt);
   const ButterworthFilter high(FilterType::highpass, 4, spec.noise_low_hz, spec.dt);
