@@ -477,54 +477,66 @@ class Simulation {
   void contact_pass(G& g, double increment_dt) {
     using L = typename G::LawType;
     auto& b = model_->bodies;
-    const Vec3* const position = b.position.data();
-    (void)position;
-    const Mat3* const rotation = b.rotation.data();
-    const Vec3* const velocity = b.velocity.data();
-    const Vec3* const omega = b.angular_velocity.data();
+    // Raw restrict pointers: the stores of one CP cannot alias the arrays read for the next, so the compiler keeps
+    // the array addresses in registers instead of reloading them after every store.
+    const Mat3* __restrict const rotation = b.rotation.data();
+    const Vec3* __restrict const velocity = b.velocity.data();
+    const Vec3* __restrict const omega = b.angular_velocity.data();
+    const std::uint32_t* __restrict const body_a = g.body_a.data();
+    const std::uint32_t* __restrict const body_b = g.body_b.data();
+    const std::uint16_t* __restrict const property = g.property.data();
+    const Vec3* __restrict const arm_a_local = g.arm_a.data();
+    const Vec3* __restrict const arm_b_local = g.arm_b.data();
+    const Vec3* __restrict const normal_local = g.normal_a.data();
+    const Vec3* __restrict const tangent_local = g.tangent_a.data();
+    const double* __restrict const area_of = g.area.data();
+    const auto* __restrict const properties = g.properties.data();
+    auto* __restrict const history = g.history.data();
+    auto* __restrict const spring_state = g.spring_state.data();
+    Vec3* __restrict const force = g.force.data();
+    double* __restrict const slip_dissipation = g.slip_dissipation.data();
+    double* __restrict const viscous_dissipation = g.viscous_dissipation.data();
     const auto count = static_cast<std::ptrdiff_t>(g.size());
     const Damping& damping = damping_;
 #pragma omp parallel for schedule(static) if (count > 1024)
     for (std::ptrdiff_t kk = 0; kk < count; ++kk) {
       const auto k = static_cast<std::size_t>(kk);
-      const std::uint32_t a = g.body_a[k];
-      const std::uint32_t bb = g.body_b[k];
+      const std::uint32_t a = body_a[k];
+      const std::uint32_t bb = body_b[k];
       const Mat3& ra = rotation[a];
-      const Vec3 arm_a = ra * g.arm_a[k];
-      const Vec3 arm_b = rotation[bb] * g.arm_b[k];
-      const Vec3 n = ra * g.normal_a[k];
-      const Vec3 t1 = ra * g.tangent_a[k];
+      const Vec3 arm_a = ra * arm_a_local[k];
+      const Vec3 arm_b = rotation[bb] * arm_b_local[k];
+      const Vec3 n = ra * normal_local[k];
+      const Vec3 t1 = ra * tangent_local[k];
       const Vec3 t2 = n.cross(t1);
       // The last move (velocities v(n-1/2)) is measured with the arms and directions half a rotation back, at the
       // middle of the move: the same move run backwards then gives exactly the opposite increment (to third order).
-      const Vec3 half_turn_a = (-0.5 * increment_dt) * omega[a];
-      const Vec3 half_turn_b = (-0.5 * increment_dt) * omega[bb];
-      const Vec3 mid_arm_a = arm_a + half_turn_a.cross(arm_a);
-      const Vec3 mid_arm_b = arm_b + half_turn_b.cross(arm_b);
-      const Vec3 mid_n = n + half_turn_a.cross(n);
-      const Vec3 mid_t1 = t1 + half_turn_a.cross(t1);
-      const Vec3 mid_t2 = t2 + half_turn_a.cross(t2);
-      const Vec3 relative = (velocity[bb] + omega[bb].cross(mid_arm_b)) - (velocity[a] + omega[a].cross(mid_arm_a));
-      const Vec3 du = relative * increment_dt;
-      const double du_n = du.dot(mid_n);
-      const contact::Shear du_s{du.dot(mid_t1), du.dot(mid_t2)};
-      const auto& p = g.properties[g.property[k]];
-      const contact::Response r = L::update(p, g.history[k], du_n, du_s);
-      const bool active = L::damping_active(p, g.history[k]);
+      // With h = -dt/2 w: w x (arm + h x arm) = c - dt/2 w x c, c = w x arm; and du . (x + h_a x x) = x . (du + du x h_a).
+      const Vec3 ca = omega[a].cross(arm_a);
+      const Vec3 cb = omega[bb].cross(arm_b);
+      const double half_dt = 0.5 * increment_dt;
+      const Vec3 relative = (velocity[bb] + cb - half_dt * omega[bb].cross(cb)) - (velocity[a] + ca - half_dt * omega[a].cross(ca));
+      const Vec3 du_move = relative * increment_dt;
+      const Vec3 du = du_move - half_dt * du_move.cross(omega[a]);
+      const double du_n = du.dot(n);
+      const contact::Shear du_s{du.dot(t1), du.dot(t2)};
+      const auto& p = properties[property[k]];
+      const contact::Response r = L::update(p, history[k], du_n, du_s);
+      const bool active = L::damping_active(p, history[k]);
       const double kn = L::normal_stiffness(p);
       const double ks = L::shear_stiffness(p);
       double dissipated = 0.0;
-      auto& spring = g.spring_state[k];
+      auto& spring = spring_state[k];
       // Spring elongations in the sense of the stresses: closing the gap compresses, shear stress opposes du_s.
       const double sn = r.normal_stress + damping.spring_stress(spring[0], kn, -du_n, increment_dt, active, dissipated);
       const double s1 = r.shear_stress[0] + damping.spring_stress(spring[1], ks, -du_s[0], increment_dt, active, dissipated);
       const double s2 = r.shear_stress[1] + damping.spring_stress(spring[2], ks, -du_s[1], increment_dt, active, dissipated);
-      const double area = g.area[k];
-      g.force[k] = area * (sn * n + s1 * t1 + s2 * t2);
+      const double area = area_of[k];
+      force[k] = area * (sn * n + s1 * t1 + s2 * t2);
       // Only what can be non-zero is stored: a law or a policy that never dissipates costs no memory traffic here.
-      if constexpr (!std::is_same_v<L, contact::Elastic>) g.slip_dissipation[k] += area * r.dissipated;
+      if constexpr (!std::is_same_v<L, contact::Elastic>) slip_dissipation[k] += area * r.dissipated;
       if constexpr (!std::is_same_v<typename Damping::ContactState, damping::NoState>)
-        g.viscous_dissipation[k] += area * dissipated;
+        viscous_dissipation[k] += area * dissipated;
     }
   }
 
