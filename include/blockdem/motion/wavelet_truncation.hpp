@@ -23,6 +23,15 @@
 
 namespace blockdem::motion {
 
+namespace detail {
+/// (cos, sin) of an angle advanced by a fixed step, by the angle-addition recurrence (no trigonometric call).
+inline void advance_phasor(double& c, double& s, double c_step, double s_step) noexcept {
+  const double c_next = c * c_step - s * s_step;
+  s = s * c_step + c * s_step;
+  c = c_next;
+}
+}  // namespace detail
+
 /// Pulse amplitude A (m/s) from the pseudo-spectral velocity at T_p (m/s), gamma and the damping ratio xi:
 /// A = 4 xi PSV(T_p) / ((1 - exp(-2 pi gamma xi)) (1 + (gamma - 1) xi)).
 /// Eq. 32 as printed multiplies by (1 + (gamma - 1) xi); only dividing by it recovers the amplitude of a pulse from
@@ -69,12 +78,8 @@ inline PulsePeaks pulse_peaks(const MavroeidisPapageorgiouPulse& pulse) {
     peaks.acceleration =
         std::max(peaks.acceleration, std::abs(0.5 * amplitude * (we * sb * ca + (1.0 + cb) * wp * sa)));
     peaks.displacement = std::max(peaks.displacement, std::abs(primitive(ca, sa, cb, sb) - origin));
-    const double ca_next = ca * dca - sa * dsa;
-    sa = sa * dca + ca * dsa;
-    ca = ca_next;
-    const double cb_next = cb * dcb - sb * dsb;
-    sb = sb * dcb + cb * dsb;
-    cb = cb_next;
+    detail::advance_phasor(ca, sa, dca, dsa);
+    detail::advance_phasor(cb, sb, dcb, dsb);
   }
   return peaks;
 }
@@ -196,12 +201,8 @@ class PulseCorrelation {
       out.cc += ec * ec;
       out.ss += es * es;
       out.cs += ec * es;
-      const double ce_next = ce * ce_step - se * se_step;
-      se = se * ce_step + ce * se_step;
-      ce = ce_next;
-      const double cp_next = cp * cp_step - sp * sp_step;
-      sp = sp * cp_step + cp * sp_step;
-      cp = cp_next;
+      detail::advance_phasor(ce, se, ce_step, se_step);
+      detail::advance_phasor(cp, sp, cp_step, sp_step);
     }
     return out;
   }
