@@ -23,22 +23,22 @@ def unpack(p):
     return nu, alpha, rest, tau
 
 
-def residuals(p):
-    _, alpha, _, tau = unpack(p)
-    x = np.outer(w, tau)
-    d = 1 + x * x
-    re = 1 + (alpha * x * x / d).sum(1)
-    im = (alpha * x / d).sum(1)
-    return im / (2 * re) - ZETA  # eq. 22
-
-
-def jacobian(p):
+def modulus_terms(p):
+    """x = w tau, d = 1 + x^2, Re and Im of M_T (eq. 19) and zeta at every evaluation frequency."""
     nu, alpha, rest, tau = unpack(p)
     x = np.outer(w, tau)
     d = 1 + x * x
     re = 1 + (alpha * x * x / d).sum(1)
     im = (alpha * x / d).sum(1)
-    z = im / (2 * re)
+    return nu, alpha, rest, x, d, re, im / (2 * re)
+
+
+def residuals(p):
+    return modulus_terms(p)[-1] - ZETA  # eq. 22
+
+
+def jacobian(p):
+    nu, alpha, rest, x, d, re, z = modulus_terms(p)
     c = (1 / (2 * re))[:, None]
     a, b = alpha * x * x / d, alpha * x / d
     dlogx = alpha * x / d**2 * ((1 - x * x) - 4 * z[:, None] * x) * c

@@ -157,29 +157,24 @@ TEST_CASE("maxwell fit: bad options name the field and its range") {
       CHECK(std::string(e.what()).find(field) != std::string::npos);
     }
   };
-  auto o = paper_fig10();
-  o.damping_ratio = 0.0;
-  expect_error(o, "zeta");
-  o = paper_fig10();
-  o.damping_ratio = 0.5;
-  expect_error(o, "(0, 0.5)");
-  o = paper_fig10();
-  o.lower_hz = 0.0;
-  expect_error(o, "f_lb");
-  o = paper_fig10();
-  o.upper_hz = 1.0;
-  expect_error(o, "f_lb < f_ub");
-  o = paper_fig10();
-  o.branches = 9;
-  expect_error(o, "1..8");
-  o = paper_fig10();
-  o.branches = 0;
-  expect_error(o, "branches");
-  o = paper_fig10();
-  o.points = 5;
-  expect_error(o, "points");
-  o = paper_fig10();
-  o.centre_margin = 0.5;
-  expect_error(o, "centre margin");
+  struct Case {
+    void (*spoil)(MaxwellFitOptions&);
+    const char* field;
+  };
+  const Case cases[] = {
+      {[](MaxwellFitOptions& o) { o.damping_ratio = 0.0; }, "zeta"},
+      {[](MaxwellFitOptions& o) { o.damping_ratio = 0.5; }, "(0, 0.5)"},
+      {[](MaxwellFitOptions& o) { o.lower_hz = 0.0; }, "f_lb"},
+      {[](MaxwellFitOptions& o) { o.upper_hz = 1.0; }, "f_lb < f_ub"},
+      {[](MaxwellFitOptions& o) { o.branches = 9; }, "1..8"},
+      {[](MaxwellFitOptions& o) { o.branches = 0; }, "branches"},
+      {[](MaxwellFitOptions& o) { o.points = 5; }, "points"},
+      {[](MaxwellFitOptions& o) { o.centre_margin = 0.5; }, "centre margin"},
+  };
+  for (const auto& c : cases) {
+    auto o = paper_fig10();
+    c.spoil(o);
+    expect_error(o, c.field);
+  }
   CHECK_THROWS_AS(damping::fit_maxwell_to_tolerance(paper_fig10(), 0.0), InvalidArgument);
 }
