@@ -86,53 +86,64 @@ BLOCKDEM_WALL_BENCHMARK(contact::MohrCoulomb, damping::Maxwell<3>);
 
 struct Reference {
   // Blocks
-  std::vector<Vec3> x, v, w, f, m;
+  std::vector<Vec3> x, v, w;
   std::vector<Quaternion> q;
   std::vector<Mat3> r;
   std::vector<double> mass;
   std::vector<Vec3> inertia;
   std::vector<char> free;
+  // Contacts (block pairs): frame fixed in A, resultants
+  std::vector<std::uint32_t> a, b, first_point;
+  std::vector<Vec3> o_a, n_a, t_a, force, moment;  // moment: [2c] on A, [2c + 1] on B
   // Contact points
-  std::vector<std::uint32_t> a, b;
-  std::vector<Vec3> arm_a, arm_b, n_a, t_a;
-  std::vector<double> area, gap, s1, s2;
-  std::vector<Vec3> force;
+  std::vector<double> s1, s2, area, gap, tau1, tau2;
   std::vector<std::uint32_t> first, entry;
   double kn = 1e10, ks = 4e9, dt = 0;
   Vec3 g = Vec3(0, 0, -9.81);
 
   void step(bool increment) {
-    const double inc = increment ? dt : 0.0;
-    const auto ncp = static_cast<std::ptrdiff_t>(a.size());
+    const double inc = increment ? dt : 0.0, h = 0.5 * inc;
+    const auto nc = static_cast<std::ptrdiff_t>(a.size());
 #pragma omp parallel for schedule(static)
-    for (std::ptrdiff_t kk = 0; kk < ncp; ++kk) {
-      const auto k = static_cast<std::size_t>(kk);
-      const auto ia = a[k], ib = b[k];
-      const Vec3 ra = r[ia] * arm_a[k], rb = r[ib] * arm_b[k];
-      const Vec3 n = r[ia] * n_a[k], t1 = r[ia] * t_a[k], t2 = n.cross(t1);
-      const Vec3 ha = (-0.5 * inc) * w[ia], hb = (-0.5 * inc) * w[ib];
-      const Vec3 ma = ra + ha.cross(ra), mb = rb + hb.cross(rb);
-      const Vec3 nm = n + ha.cross(n), t1m = t1 + ha.cross(t1), t2m = t2 + ha.cross(t2);
-      const Vec3 du = ((v[ib] + w[ib].cross(mb)) - (v[ia] + w[ia].cross(ma))) * inc;
-      gap[k] += du.dot(nm);
-      s1[k] -= ks * du.dot(t1m);
-      s2[k] -= ks * du.dot(t2m);
-      force[k] = area[k] * (-kn * gap[k] * n + s1[k] * t1 + s2[k] * t2);
+    for (std::ptrdiff_t cc = 0; cc < nc; ++cc) {
+      const auto c = static_cast<std::size_t>(cc);
+      const auto ia = a[c], ib = b[c];
+      const Vec3 n = r[ia] * n_a[c], t1 = r[ia] * t_a[c], t2 = n.cross(t1);
+      const Vec3 arm_a = r[ia] * o_a[c], arm_b = x[ia] + arm_a - x[ib];
+      const Vec3 dv = v[ib] - v[ia], wa = w[ia], ww = w[ib] - wa, wa_arm = wa.cross(arm_a);
+      const Vec3 u = dv + w[ib].cross(arm_b + h * (dv - wa_arm)) - wa.cross(arm_a - h * wa_arm);
+      const Vec3 d0 = inc * u + h * wa.cross(inc * u);
+      const Vec3 e1 = inc * ww.cross(t1 - h * wa.cross(t1)), e2 = inc * ww.cross(t2 - h * wa.cross(t2));
+      const Vec3 d1 = e1 + h * wa.cross(e1), d2 = e2 + h * wa.cross(e2);
+      const double d0n = d0.dot(n), d01 = d0.dot(t1), d02 = d0.dot(t2);
+      const double d1n = d1.dot(n), d11 = d1.dot(t1), d12 = d1.dot(t2);
+      const double d2n = d2.dot(n), d21 = d2.dot(t1), d22 = d2.dot(t2);
+      double fn = 0, f1 = 0, f2 = 0, mn = 0, m1 = 0, m2 = 0;
+      for (auto k = first_point[c]; k < first_point[c + 1]; ++k) {
+        const double x1 = s1[k], x2 = s2[k];
+        gap[k] += d0n + x1 * d1n + x2 * d2n;
+        tau1[k] -= ks * (d01 + x1 * d11 + x2 * d21);
+        tau2[k] -= ks * (d02 + x1 * d12 + x2 * d22);
+        const double an = -kn * gap[k] * area[k], a1 = tau1[k] * area[k], a2 = tau2[k] * area[k];
+        fn += an; f1 += a1; f2 += a2;
+        mn += x1 * a2 - x2 * a1; m1 += x2 * an; m2 -= x1 * an;
+      }
+      const Vec3 f = fn * n + f1 * t1 + f2 * t2, mo = mn * n + m1 * t1 + m2 * t2;
+      force[c] = f;
+      moment[2 * c] = -(arm_a.cross(f) + mo);
+      moment[2 * c + 1] = arm_b.cross(f) + mo;
     }
     const auto nb = static_cast<std::ptrdiff_t>(x.size());
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t ii = 0; ii < nb; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
       if (!free[i]) continue;
-      Vec3 fi = mass[i] * g, mb_sum = Vec3::Zero();
-      const Mat3 rt = r[i].transpose();
+      Vec3 fi = mass[i] * g, mi = Vec3::Zero();
       for (auto e = first[i]; e < first[i + 1]; ++e) {
-        const auto k = entry[e] >> 1;
-        const Vec3 fk = (entry[e] & 1u) ? Vec3(force[k]) : Vec3(-force[k]);
-        fi += fk;
-        mb_sum += ((entry[e] & 1u) ? arm_b[k] : arm_a[k]).cross(rt * fk);
+        const double sign = static_cast<double>(entry[e] & 1u) * 2.0 - 1.0;
+        fi += sign * force[entry[e] >> 1];
+        mi += moment[entry[e]];
       }
-      const Vec3 mi = r[i] * mb_sum;
       v[i] += dt * fi / mass[i];
       const Vec3 wb_old = r[i].transpose() * w[i];
       const Vec3 mb = r[i].transpose() * mi;
@@ -163,10 +174,11 @@ void reference(benchmark::State& state) {
   ref.x = bo.position; ref.v = bo.velocity; ref.w = bo.angular_velocity; ref.q = bo.orientation; ref.r = bo.rotation;
   ref.mass = bo.mass; ref.inertia = bo.principal_inertia;
   for (auto mo : bo.motion) ref.free.push_back(mo == model::Motion::free);
-  ref.a = g.body_a; ref.b = g.body_b; ref.arm_a = g.arm_a; ref.arm_b = g.arm_b; ref.n_a = g.normal_a; ref.t_a = g.tangent_a;
-  ref.area = g.area;
-  for (const auto& h : g.history) { ref.gap.push_back(h.gap); ref.s1.push_back(h.shear[0]); ref.s2.push_back(h.shear[1]); }
-  ref.force.assign(g.size(), Vec3::Zero());
+  ref.a = g.body_a; ref.b = g.body_b; ref.first_point = g.first_point;
+  ref.o_a = g.origin_a; ref.n_a = g.normal_a; ref.t_a = g.tangent_a;
+  ref.force = g.force; ref.moment = g.moment;
+  ref.s1 = g.s1; ref.s2 = g.s2; ref.area = g.area;
+  for (const auto& h : g.history) { ref.gap.push_back(h.gap); ref.tau1.push_back(h.shear[0]); ref.tau2.push_back(h.shear[1]); }
   ref.first = g.first; ref.entry = g.entry; ref.dt = sim.timestep();
   bool increment = false;
   for (int i = 0; i < 20; ++i) { ref.step(increment); increment = true; }

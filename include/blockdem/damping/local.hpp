@@ -10,10 +10,10 @@ struct Local {
   double coefficient = 0.8;  // 3DEC's default
   using ContactState = NoState;
   constexpr double spring_stress(ContactState&, double, double, double, bool, double&) const noexcept { return 0.0; }
-  constexpr double velocity_update(double v, double force, double mass, double dt, double& dissipated) const noexcept {
+  constexpr double velocity_update(double v, double force, Inertia mass, double dt, double& dissipated) const noexcept {
     const double magnitude = force < 0 ? -force : force;
     const double damping_force = v > 0 ? -coefficient * magnitude : (v < 0 ? coefficient * magnitude : 0.0);
-    const double v_new = v + dt * (force + damping_force) / mass;
+    const double v_new = v + dt * (force + damping_force) * mass.inverse;
     const double work = damping_force * 0.5 * (v + v_new) * dt;
     dissipated -= work;  // the damping force opposes the motion: its work is negative
     return v_new;

@@ -145,7 +145,7 @@ struct Maxwell {
     dissipated += work;
     return total;
   }
-  constexpr double velocity_update(double v, double force, double mass, double dt, double&) const noexcept {
+  constexpr double velocity_update(double v, double force, Inertia mass, double dt, double&) const noexcept {
     return undamped_velocity_update(v, force, mass, dt);
   }
   constexpr double timestep_factor(double) const noexcept { return timestep_factor(); }

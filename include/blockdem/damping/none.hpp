@@ -8,7 +8,7 @@ namespace blockdem::damping {
 struct None {
   using ContactState = NoState;
   constexpr double spring_stress(ContactState&, double, double, double, bool, double&) const noexcept { return 0.0; }
-  constexpr double velocity_update(double v, double force, double mass, double dt, double&) const noexcept {
+  constexpr double velocity_update(double v, double force, Inertia mass, double dt, double&) const noexcept {
     return undamped_velocity_update(v, force, mass, dt);
   }
   constexpr double timestep_factor(double) const noexcept { return 1.0; }

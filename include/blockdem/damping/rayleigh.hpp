@@ -42,7 +42,7 @@ struct Rayleigh {
                                  double& dissipated) const noexcept {
     return StiffnessProportional{beta}.spring_stress(previous, stiffness, du, dt, active, dissipated);
   }
-  constexpr double velocity_update(double v, double force, double mass, double dt, double& dissipated) const noexcept {
+  constexpr double velocity_update(double v, double force, Inertia mass, double dt, double& dissipated) const noexcept {
     return MassProportional{alpha}.velocity_update(v, force, mass, dt, dissipated);
   }
 };

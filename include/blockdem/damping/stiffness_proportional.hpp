@@ -38,7 +38,7 @@ struct StiffnessProportional {
     previous = stress;
     return stress;
   }
-  constexpr double velocity_update(double v, double force, double mass, double dt, double&) const noexcept {
+  constexpr double velocity_update(double v, double force, Inertia mass, double dt, double&) const noexcept {
     return undamped_velocity_update(v, force, mass, dt);
   }
 };

@@ -1,6 +1,10 @@
 #pragma once
-// The contact points of one joint law, in struct-of-arrays storage: geometry fixed in the two blocks, the law's
-// history, the damping policy's per-spring state, and the forces of the last step.
+// The contacts of one joint law, in struct-of-arrays storage. A contact is the interface between two blocks (one
+// common plane, as in 3DEC); its contact points (CPs, the sub-contacts) lie on that plane. What is common to the
+// CPs of a contact is stored and computed once per contact: the block pair, the joint parameters, the contact
+// frame (n, t1, t2) and its origin, fixed in block A; the relative motion of the two blocks, reduced to an affine
+// map of the CP's plane coordinates; the resultant force and moments. Per CP remain two plane coordinates, the
+// area, the law's history, the damping policy's spring state and the traction.
 
 #include <array>
 #include <cstdint>
@@ -17,46 +21,79 @@ struct ContactGroup {
   using Parameters = typename Law::Parameters;
   using History = typename Law::History;
   using SpringState = std::array<typename Damping::ContactState, 3>;  // normal, shear 1, shear 2
+  using Traction = std::array<double, 3>;                             // Pa: normal (compression +), t1, t2
 
-  std::vector<Parameters> properties;  // the parameter sets of this group; CPs refer to them by index
+  std::vector<Parameters> properties;  // the parameter sets of this group; contacts refer to them by index
 
-  // Per contact point.
+  // Per contact.
   std::vector<std::uint32_t> body_a, body_b;
   std::vector<std::uint16_t> property;
-  std::vector<Vec3> arm_a, arm_b;        // m, the CP in the body frames of A and B
-  std::vector<Vec3> normal_a, tangent_a; // n and t1 in A's body frame (they turn with A)
+  std::vector<Vec3> origin_a;            // m, the origin of the contact plane in A's body frame (from A's centroid)
+  std::vector<Vec3> normal_a, tangent_a; // n and t1 in A's body frame (they turn with A); t2 = n x t1
+  std::vector<std::uint32_t> first_point;  // the CPs of contact c are first_point[c] .. first_point[c + 1] - 1
+  std::vector<Vec3> force;               // N, world frame, on B (A gets the opposite)
+  std::vector<Vec3> moment;              // N m, world frame: [2c] on A about A's centroid, [2c + 1] on B about B's
+
+  // Per contact point.
+  std::vector<double> s1, s2;            // m, coordinates on the contact plane from the origin along t1, t2
   std::vector<double> area;              // m^2
   std::vector<History> history;
   std::vector<SpringState> spring_state;
-  std::vector<Vec3> force;               // N, world frame, on B (A gets the opposite)
-  std::vector<double> slip_dissipation;  // J, accumulated
+  std::vector<Traction> traction;        // Pa, on B: joint law plus damping, in the contact frame
+  std::vector<double> slip_dissipation;     // J, accumulated
   std::vector<double> viscous_dissipation;  // J, accumulated
 
-  // Gather lists: for block i, entries first[i] .. first[i + 1] - 1 of `entry`, each 2 * cp + side (0: A, 1: B).
+  // Gather lists: for block i, entries first[i] .. first[i + 1] - 1 of `entry`, each 2 * contact + side (0: A, 1: B).
   std::vector<std::uint32_t> first;
   std::vector<std::uint32_t> entry;
 
-  std::size_t size() const { return body_a.size(); }
+  std::size_t contacts() const { return body_a.size(); }
+  std::size_t size() const { return area.size(); }  // contact points
 
-  void clear() {
-    body_a.clear(); body_b.clear(); property.clear(); arm_a.clear(); arm_b.clear(); normal_a.clear();
-    tangent_a.clear(); area.clear(); history.clear(); spring_state.clear(); force.clear();
-    slip_dissipation.clear(); viscous_dissipation.clear();
+  void clear() { *this = ContactGroup{}; }
+
+  /// Opens contact c (call before adding its CPs).
+  void begin_contact(std::uint32_t a, std::uint32_t b, std::uint16_t p, const Vec3& origin, const Vec3& normal,
+                     const Vec3& tangent) {
+    body_a.push_back(a);
+    body_b.push_back(b);
+    property.push_back(p);
+    origin_a.push_back(origin);
+    normal_a.push_back(normal);
+    tangent_a.push_back(tangent);
+    if (first_point.empty()) first_point.push_back(0);
+    first_point.push_back(first_point.back());
+    force.push_back(Vec3::Zero());
+    moment.push_back(Vec3::Zero());
+    moment.push_back(Vec3::Zero());
   }
 
-  /// Builds the gather lists for `blocks` blocks, in increasing CP order so that sums are reproducible.
+  /// Adds a CP to the contact opened last.
+  void add_point(double u, double v, double a, const History& h, const SpringState& spring, double slip, double viscous) {
+    s1.push_back(u);
+    s2.push_back(v);
+    area.push_back(a);
+    history.push_back(h);
+    spring_state.push_back(spring);
+    traction.push_back({0.0, 0.0, 0.0});
+    slip_dissipation.push_back(slip);
+    viscous_dissipation.push_back(viscous);
+    ++first_point.back();
+  }
+
+  /// Builds the gather lists for `blocks` blocks, in increasing contact order so that sums are reproducible.
   void build_gather_lists(std::size_t blocks) {
     first.assign(blocks + 1, 0);
-    for (std::size_t k = 0; k < size(); ++k) {
-      ++first[body_a[k] + 1];
-      ++first[body_b[k] + 1];
+    for (std::size_t c = 0; c < contacts(); ++c) {
+      ++first[body_a[c] + 1];
+      ++first[body_b[c] + 1];
     }
     for (std::size_t i = 0; i < blocks; ++i) first[i + 1] += first[i];
     entry.assign(first.back(), 0);
     std::vector<std::uint32_t> next(first.begin(), first.end() - 1);
-    for (std::size_t k = 0; k < size(); ++k) {
-      entry[next[body_a[k]]++] = static_cast<std::uint32_t>(2 * k);
-      entry[next[body_b[k]]++] = static_cast<std::uint32_t>(2 * k + 1);
+    for (std::size_t c = 0; c < contacts(); ++c) {
+      entry[next[body_a[c]]++] = static_cast<std::uint32_t>(2 * c);
+      entry[next[body_b[c]]++] = static_cast<std::uint32_t>(2 * c + 1);
     }
   }
 };

@@ -6,6 +6,7 @@
 // branch on the policy. Results do not depend on the number of OpenMP threads.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -14,6 +15,7 @@
 #include <numeric>
 #include <string>
 #include <tuple>
+#include <unordered_map>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -21,6 +23,7 @@
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/contact/elastic.hpp"
 #include "blockdem/core/error.hpp"
+#include "blockdem/core/rotation.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
 #include "blockdem/integrate/contact_group.hpp"
@@ -100,13 +103,19 @@ class Simulation {
     std::vector<double> k_translation(b.size(), 0.0), k_rotation(b.size(), 0.0);
     for_each_group([&](const auto& g) {
       using L = typename std::remove_cvref_t<decltype(g)>::LawType;
-      for (std::size_t k = 0; k < g.size(); ++k) {
-        const auto& p = g.properties[g.property[k]];
-        const double stiffness = std::max(L::normal_stiffness(p), L::shear_stiffness(p)) * g.area[k];
-        k_translation[g.body_a[k]] += stiffness;
-        k_translation[g.body_b[k]] += stiffness;
-        k_rotation[g.body_a[k]] += stiffness * g.arm_a[k].squaredNorm();
-        k_rotation[g.body_b[k]] += stiffness * g.arm_b[k].squaredNorm();
+      for (std::size_t c = 0; c < g.contacts(); ++c) {
+        const auto& p = g.properties[g.property[c]];
+        const double k_spring = std::max(L::normal_stiffness(p), L::shear_stiffness(p));
+        const std::size_t a = g.body_a[c], bb = g.body_b[c];
+        const ContactFrame fr = frame(g, c);
+        for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k) {
+          const double stiffness = k_spring * g.area[k];
+          const Vec3 x = fr.point(g.s1[k], g.s2[k]);
+          k_translation[a] += stiffness;
+          k_translation[bb] += stiffness;
+          k_rotation[a] += stiffness * (x - b.position[a]).squaredNorm();
+          k_rotation[bb] += stiffness * (x - b.position[bb]).squaredNorm();
+        }
       }
     });
     double omega_max = 0;
@@ -168,24 +177,26 @@ class Simulation {
   /// Calls f(const ContactView&) for every contact point, group by group.
   template <class F>
   void visit_contacts(F&& f) const {
-    const auto& b = model_->bodies;
     for_each_group([&](const auto& g) {
-      for (std::size_t k = 0; k < g.size(); ++k) {
-        ContactView v;
-        const std::size_t a = g.body_a[k], bb = g.body_b[k];
-        v.block_a = a;
-        v.block_b = bb;
-        v.position = 0.5 * (b.position[a] + b.rotation[a] * g.arm_a[k] + b.position[bb] + b.rotation[bb] * g.arm_b[k]);
-        v.normal = b.rotation[a] * g.normal_a[k];
-        v.force = g.force[k];
-        v.area = g.area[k];
-        const auto& h = g.history[k];
-        v.gap = h.gap;
-        v.normal_stress = v.force.dot(v.normal) / v.area;
-        v.shear_stress = (v.force - v.force.dot(v.normal) * v.normal).norm() / v.area;
-        if constexpr (requires { h.damage; }) v.damage = h.damage;
-        else if constexpr (requires { h.failed; }) v.damage = h.failed ? 1.0 : 0.0;
-        f(v);
+      for (std::size_t c = 0; c < g.contacts(); ++c) {
+        const ContactFrame fr = frame(g, c);
+        for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k) {
+          ContactView v;
+          v.block_a = g.body_a[c];
+          v.block_b = g.body_b[c];
+          v.position = fr.point(g.s1[k], g.s2[k]);
+          v.normal = fr.n;
+          v.area = g.area[k];
+          const auto& t = g.traction[k];
+          v.force = v.area * (t[0] * fr.n + t[1] * fr.t1 + t[2] * fr.t2);
+          const auto& h = g.history[k];
+          v.gap = h.gap;
+          v.normal_stress = t[0];
+          v.shear_stress = std::hypot(t[1], t[2]);
+          if constexpr (requires { h.damage; }) v.damage = h.damage;
+          else if constexpr (requires { h.failed; }) v.damage = h.failed ? 1.0 : 0.0;
+          f(v);
+        }
       }
     });
   }
@@ -199,7 +210,7 @@ class Simulation {
     // (relative to the base) by more than the redetection distance. Forces of the new set, then the block pass.
     if (++steps_since_check_ >= settings_.redetection_check_interval) {
       steps_since_check_ = 0;
-      if (moved_beyond_redetection_distance()) {
+      if (moved_since_detection_) {
         assign_contacts(model::detect_contacts(model_->bodies, settings_), /*keep_history=*/true);
         for_each_group([&](auto& g) { contact_pass(g, 0.0); });
       }
@@ -308,6 +319,12 @@ class Simulation {
     viscous_.assign(n, 0.0);
     detected_position_ = model_->bodies.position;
     detected_orientation_ = model_->bodies.orientation;
+    inverse_mass_.assign(n, 0.0);
+    inverse_inertia_.assign(n, Vec3::Zero());
+    for (std::size_t i = 0; i < n; ++i) {
+      inverse_mass_[i] = 1.0 / model_->bodies.mass[i];
+      inverse_inertia_[i] = model_->bodies.principal_inertia[i].cwiseInverse();
+    }
     radius_.assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i)
       for (const auto& v : model_->bodies.shape[i].vertices) radius_[i] = std::max(radius_[i], v.norm());
@@ -322,21 +339,6 @@ class Simulation {
     }
   }
 
-  /// Displacement relative to the base motion since the last detection (a structure riding on the table needs no
-  /// new contacts), plus rotation times the block's radius.
-  bool moved_beyond_redetection_distance() const {
-    const auto& b = model_->bodies;
-    const double limit = settings_.redetection();
-    const Vec3 base_moved = base_displacement_ - detected_base_displacement_;
-    for (std::size_t i = 0; i < b.size(); ++i) {
-      if (b.motion[i] != model::Motion::free) continue;
-      // 2 |vector part of q q0^-1| = angle for small angles, without acos.
-      const double angle = 2.0 * (b.orientation[i] * detected_orientation_[i].conjugate()).vec().norm();
-      if ((b.position[i] - detected_position_[i] - base_moved).norm() + angle * radius_[i] > limit) return true;
-    }
-    return false;
-  }
-
   template <contact::ContactLaw L>
   static constexpr std::size_t law_index() {
     constexpr bool same[] = {std::is_same_v<L, Laws>...};
@@ -345,28 +347,56 @@ class Simulation {
     return sizeof...(Laws);
   }
 
-  /// Distributes detected CPs over the groups; with keep_history, a CP within the matching distance of an old CP
-  /// of the same block pair takes over its history and damping state.
+  /// The world frame of contact c: origin, n (from A to B), t1, t2, all turning with block A.
+  struct ContactFrame {
+    Vec3 origin, n, t1, t2;
+    Vec3 point(double u, double v) const { return origin + u * t1 + v * t2; }
+  };
+  template <class G>
+  ContactFrame frame(const G& g, std::size_t c) const {
+    const auto& b = model_->bodies;
+    const Mat3& ra = b.rotation[g.body_a[c]];
+    ContactFrame fr;
+    fr.origin = b.position[g.body_a[c]] + rotate(ra, g.origin_a[c]);
+    fr.n = rotate(ra, g.normal_a[c]);
+    fr.t1 = rotate(ra, g.tangent_a[c]);
+    fr.t2 = fr.n.cross(fr.t1);
+    return fr;
+  }
+
+  /// Distributes detected CPs over the groups, one contact per block pair (detection emits the CPs of a pair
+  /// together, on one common plane); with keep_history, a CP within the matching distance of an old CP of the
+  /// same block pair takes over its history and damping state.
   void assign_contacts(const std::vector<model::ContactCandidate>& candidates, bool keep_history) {
     const auto& b = model_->bodies;
     Groups old = std::move(groups_);
     groups_ = Groups{};
-    // Property sets are kept (CP property indices stay valid); new ones are appended.
+    // Property sets are kept (property indices stay valid); new ones are appended.
     std::apply([&](auto&... g) { ((g.properties = std::get<std::remove_cvref_t<decltype(g)>>(old).properties), ...); }, groups_);
     const double match = std::max(settings_.tolerance, 0.25 * std::sqrt(settings_.max_contact_point_area));
-    // Energy dissipated at CPs that will not be taken over is kept in the totals.
-    std::apply([&](auto&... g) { ((taken_over_[law_index<typename std::remove_cvref_t<decltype(g)>::LawType>()].assign(g.size(), 0)), ...); }, old);
+    // Old contacts by block pair, and which of their CPs have been taken over. Energy dissipated at CPs that will
+    // not be taken over is kept in the totals.
+    std::apply([&](auto&... g) {
+      ((taken_over_[law_index<typename std::remove_cvref_t<decltype(g)>::LawType>()].assign(g.size(), 0)), ...);
+      ((old_contacts_[law_index<typename std::remove_cvref_t<decltype(g)>::LawType>()] = contacts_by_pair(g)), ...);
+    }, old);
     double carried_slip = 0, carried_viscous = 0, old_slip = 0, old_viscous = 0;
     std::apply([&](const auto&... g) {
       ((old_slip += std::accumulate(g.slip_dissipation.begin(), g.slip_dissipation.end(), 0.0),
         old_viscous += std::accumulate(g.viscous_dissipation.begin(), g.viscous_dissipation.end(), 0.0)), ...);
     }, old);
     std::map<std::pair<int, int>, Properties> chosen;
-    for (const auto& c : candidates) {
+    for (std::size_t begin = 0, end = 0; begin < candidates.size(); begin = end) {
+      const auto& c = candidates[begin];
+      end = begin + 1;
+      while (end < candidates.size() && candidates[end].a == c.a && candidates[end].b == c.b) ++end;
       const int ta = b.joint_tag[c.a], tb = b.joint_tag[c.b];
       auto it = chosen.find({ta, tb});
       if (it == chosen.end()) it = chosen.emplace(std::make_pair(ta, tb), properties_(ta, tb)).first;
-      std::visit([&](const auto& params) { add_contact(params, c, old, keep_history, match, carried_slip, carried_viscous); }, it->second);
+      std::visit([&](const auto& params) {
+        add_contact(params, candidates.data() + begin, candidates.data() + end, old, keep_history, match, carried_slip,
+                    carried_viscous);
+      }, it->second);
     }
     retired_slip_ += old_slip - carried_slip;
     retired_viscous_ += old_viscous - carried_viscous;
@@ -374,12 +404,24 @@ class Simulation {
     detected_position_ = b.position;
     detected_orientation_ = b.orientation;
     detected_base_displacement_ = base_displacement_;
+    moved_since_detection_ = false;
     ++detections_;
   }
 
+  static std::uint64_t pair_key(std::size_t a, std::size_t b) { return (std::uint64_t{a} << 32) | std::uint64_t{b}; }
+
+  template <class G>
+  static std::unordered_map<std::uint64_t, std::uint32_t> contacts_by_pair(const G& g) {
+    std::unordered_map<std::uint64_t, std::uint32_t> index;
+    index.reserve(g.contacts());
+    for (std::size_t c = 0; c < g.contacts(); ++c) index.emplace(pair_key(g.body_a[c], g.body_b[c]), static_cast<std::uint32_t>(c));
+    return index;
+  }
+
+  /// Adds the contact of the CPs [first, last) (one block pair) to the group of the law of `params`.
   template <class Params>
-  void add_contact(const Params& params, const model::ContactCandidate& c, Groups& old, bool keep_history, double match,
-                   double& carried_slip, double& carried_viscous) {
+  void add_contact(const Params& params, const model::ContactCandidate* first, const model::ContactCandidate* last,
+                   Groups& old, bool keep_history, double match, double& carried_slip, double& carried_viscous) {
     using L = std::tuple_element_t<index_of_parameters<Params>(), std::tuple<Laws...>>;
     auto& g = std::get<Group<L>>(groups_);
     const auto& b = model_->bodies;
@@ -390,55 +432,61 @@ class Simulation {
       if (p >= 65535) throw InvalidArgument("simulation: more than 65535 different contact property sets");
       g.properties.push_back(params);
     }
-    const Mat3& ra = b.rotation[c.a];
-    const Mat3& rb = b.rotation[c.b];
-    g.body_a.push_back(static_cast<std::uint32_t>(c.a));
-    g.body_b.push_back(static_cast<std::uint32_t>(c.b));
-    g.property.push_back(static_cast<std::uint16_t>(p));
-    g.arm_a.push_back(ra.transpose() * (c.position - b.position[c.a]));
-    g.arm_b.push_back(rb.transpose() * (c.position - b.position[c.b]));
-    g.normal_a.push_back(ra.transpose() * c.normal);
-    g.tangent_a.push_back(ra.transpose() * c.tangent);
-    g.area.push_back(c.area);
-    typename L::History h{};
-    h.gap = c.gap;
-    typename Group<L>::SpringState spring{};
-    double slip = 0, viscous = 0;
+    const std::size_t a = first->a, bb = first->b;
+    const Vec3 n = first->normal, t1 = first->tangent, t2 = n.cross(t1);
+    // The origin at the area centroid of the CPs keeps the plane coordinates small.
+    Vec3 origin = Vec3::Zero();
+    double total_area = 0;
+    for (auto c = first; c != last; ++c) {
+      origin += c->area * c->position;
+      total_area += c->area;
+    }
+    origin /= total_area;
+    const Mat3& ra = b.rotation[a];
+    g.begin_contact(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(bb), static_cast<std::uint16_t>(p),
+                    ra.transpose() * (origin - b.position[a]), ra.transpose() * n, ra.transpose() * t1);
+    const Group<L>* o = nullptr;
+    std::size_t oc = 0;
     if (keep_history) {
-      const auto& o = std::get<Group<L>>(old);
-      auto& taken = taken_over_[law_index<L>()];
-      for (std::size_t k = 0; k < o.size(); ++k) {
-        if (taken[k] || o.body_a[k] != c.a || o.body_b[k] != c.b) continue;
-        // The old CP's material points on A and on B have drifted apart by the slip since the last detection; the
-        // new CP sits at a vertex of one of the two faces, so it is near one of them within the contact plane
-        // (along the normal they differ by the overlap).
-        auto in_plane = [&](const Vec3& d) { return (d - d.dot(c.normal) * c.normal).norm(); };
-        const Vec3 on_a = b.position[c.a] + ra * o.arm_a[k];
-        const Vec3 on_b = b.position[c.b] + rb * o.arm_b[k];
-        if (std::min(in_plane(on_a - c.position), in_plane(on_b - c.position)) > match) continue;
-        taken[k] = 1;
-        h = o.history[k];
-        spring = o.spring_state[k];
-        slip = o.slip_dissipation[k];
-        viscous = o.viscous_dissipation[k];
-        carried_slip += slip;
-        carried_viscous += viscous;
-        // Shear components follow the new tangent directions.
-        if constexpr (requires { h.shear; }) {
-          const Vec3 t1_old = ra * o.tangent_a[k];
-          const Vec3 t2_old = (ra * o.normal_a[k]).cross(t1_old);
-          const Vec3 shear = h.shear[0] * t1_old + h.shear[1] * t2_old;
-          const Vec3 t2_new = c.normal.cross(c.tangent);
-          h.shear = {shear.dot(c.tangent), shear.dot(t2_new)};
-        }
-        break;
+      const auto& index = old_contacts_[law_index<L>()];
+      if (const auto it = index.find(pair_key(a, bb)); it != index.end()) {
+        o = &std::get<Group<L>>(old);
+        oc = it->second;
       }
     }
-    g.history.push_back(h);
-    g.spring_state.push_back(spring);
-    g.force.push_back(Vec3::Zero());
-    g.slip_dissipation.push_back(slip);
-    g.viscous_dissipation.push_back(viscous);
+    const ContactFrame old_frame = o ? frame(*o, oc) : ContactFrame{};
+    for (auto c = first; c != last; ++c) {
+      const Vec3 d = c->position - origin;
+      typename L::History h{};
+      h.gap = c->gap;
+      typename Group<L>::SpringState spring{};
+      double slip = 0, viscous = 0;
+      if (o) {
+        auto& taken = taken_over_[law_index<L>()];
+        for (std::uint32_t k = o->first_point[oc]; k < o->first_point[oc + 1]; ++k) {
+          if (taken[k]) continue;
+          // The old CP sits on A where it was detected; the new one at a vertex of the current overlap, so near it
+          // within the contact plane (along the normal they differ by the overlap).
+          Vec3 e = old_frame.point(o->s1[k], o->s2[k]) - c->position;
+          e -= e.dot(n) * n;
+          if (e.norm() > match) continue;
+          taken[k] = 1;
+          h = o->history[k];
+          spring = o->spring_state[k];
+          slip = o->slip_dissipation[k];
+          viscous = o->viscous_dissipation[k];
+          carried_slip += slip;
+          carried_viscous += viscous;
+          // Shear components follow the new tangent directions.
+          if constexpr (requires { h.shear; }) {
+            const Vec3 shear = h.shear[0] * old_frame.t1 + h.shear[1] * old_frame.t2;
+            h.shear = {shear.dot(t1), shear.dot(t2)};
+          }
+          break;
+        }
+      }
+      g.add_point(d.dot(t1), d.dot(t2), c->area, h, spring, slip, viscous);
+    }
   }
 
   template <class Params>
@@ -459,20 +507,26 @@ class Simulation {
     to.body_a = from.body_a;
     to.body_b = from.body_b;
     to.property = from.property;
-    to.arm_a = from.arm_a;
-    to.arm_b = from.arm_b;
+    to.origin_a = from.origin_a;
     to.normal_a = from.normal_a;
     to.tangent_a = from.tangent_a;
+    to.first_point = from.first_point;
+    to.force = from.force;
+    to.moment = from.moment;
+    to.s1 = from.s1;
+    to.s2 = from.s2;
     to.area = from.area;
     to.history = from.history;
     to.spring_state.assign(from.size(), typename To::SpringState{});
-    to.force = from.force;
+    to.traction = from.traction;
     to.slip_dissipation.assign(from.size(), 0.0);
     to.viscous_dissipation.assign(from.size(), 0.0);
     to.build_gather_lists(model_->bodies.size());
   }
 
-  /// The fused contact loop of one law: relative displacement increment -> law -> damping -> force and moments.
+  /// The fused contact loop of one law. Per contact: the frame and the relative motion of the two blocks, reduced
+  /// to the displacement increment at the origin and the relative rotation; per CP: the increment by four
+  /// multiply-adds -> law -> damping -> traction, summed into the contact's force and moments.
   template <class G>
   void contact_pass(G& g, double increment_dt) {
     using L = typename G::LawType;
@@ -480,67 +534,99 @@ class Simulation {
     // Raw restrict pointers: the stores of one CP cannot alias the arrays read for the next, so the compiler keeps
     // the array addresses in registers instead of reloading them after every store.
     const Mat3* __restrict const rotation = b.rotation.data();
+    const Vec3* __restrict const position = b.position.data();
     const Vec3* __restrict const velocity = b.velocity.data();
     const Vec3* __restrict const omega = b.angular_velocity.data();
     const std::uint32_t* __restrict const body_a = g.body_a.data();
     const std::uint32_t* __restrict const body_b = g.body_b.data();
     const std::uint16_t* __restrict const property = g.property.data();
-    const Vec3* __restrict const arm_a_local = g.arm_a.data();
-    const Vec3* __restrict const arm_b_local = g.arm_b.data();
+    const Vec3* __restrict const origin_local = g.origin_a.data();
     const Vec3* __restrict const normal_local = g.normal_a.data();
     const Vec3* __restrict const tangent_local = g.tangent_a.data();
+    const std::uint32_t* __restrict const first_point = g.first_point.data();
+    Vec3* __restrict const contact_force = g.force.data();
+    Vec3* __restrict const contact_moment = g.moment.data();
+    const double* __restrict const plane_1 = g.s1.data();
+    const double* __restrict const plane_2 = g.s2.data();
     const double* __restrict const area_of = g.area.data();
     const auto* __restrict const properties = g.properties.data();
     auto* __restrict const history = g.history.data();
     auto* __restrict const spring_state = g.spring_state.data();
-    Vec3* __restrict const force = g.force.data();
+    auto* __restrict const traction = g.traction.data();
     double* __restrict const slip_dissipation = g.slip_dissipation.data();
     double* __restrict const viscous_dissipation = g.viscous_dissipation.data();
-    const auto count = static_cast<std::ptrdiff_t>(g.size());
+    const auto count = static_cast<std::ptrdiff_t>(g.contacts());
     const Damping& damping = damping_;
-#pragma omp parallel for schedule(static) if (count > 1024)
-    for (std::ptrdiff_t kk = 0; kk < count; ++kk) {
-      const auto k = static_cast<std::size_t>(kk);
-      const std::uint32_t a = body_a[k];
-      const std::uint32_t bb = body_b[k];
+    const double h = 0.5 * increment_dt;
+#pragma omp parallel for schedule(static) if (count > 256)
+    for (std::ptrdiff_t cc = 0; cc < count; ++cc) {
+      const auto c = static_cast<std::size_t>(cc);
+      const std::uint32_t a = body_a[c];
+      const std::uint32_t bb = body_b[c];
       const Mat3& ra = rotation[a];
-      const Vec3 arm_a = ra * arm_a_local[k];
-      const Vec3 arm_b = rotation[bb] * arm_b_local[k];
-      const Vec3 n = ra * normal_local[k];
-      const Vec3 t1 = ra * tangent_local[k];
+      const Vec3 n = rotate(ra, normal_local[c]);
+      const Vec3 t1 = rotate(ra, tangent_local[c]);
       const Vec3 t2 = n.cross(t1);
-      // The last move (velocities v(n-1/2)) is measured with the arms and directions half a rotation back, at the
-      // middle of the move: the same move run backwards then gives exactly the opposite increment (to third order).
-      // With h = -dt/2 w: w x (arm + h x arm) = c - dt/2 w x c, c = w x arm; and du . (x + h_a x x) = x . (du + du x h_a).
-      const Vec3 ca = omega[a].cross(arm_a);
-      const Vec3 cb = omega[bb].cross(arm_b);
-      const double half_dt = 0.5 * increment_dt;
-      const Vec3 relative = (velocity[bb] + cb - half_dt * omega[bb].cross(cb)) - (velocity[a] + ca - half_dt * omega[a].cross(ca));
-      const Vec3 du_move = relative * increment_dt;
-      const Vec3 du = du_move - half_dt * du_move.cross(omega[a]);
-      const double du_n = du.dot(n);
-      const contact::Shear du_s{du.dot(t1), du.dot(t2)};
-      const auto& p = properties[property[k]];
-      const contact::Response r = L::update(p, history[k], du_n, du_s);
-      const bool active = L::damping_active(p, history[k]);
+      const Vec3 arm_a = rotate(ra, origin_local[c]);           // origin - x_A
+      const Vec3 arm_b = position[a] + arm_a - position[bb];    // origin - x_B
+      // The last move (velocities v(n-1/2)) is measured half a move back, at its middle, so that the same move
+      // run backwards gives exactly the opposite increment (to third order): A turned back by h w_A (h = dt/2),
+      // both centroids moved back by h v. The CP at origin + S, S = s1 t1 + s2 t2 fixed in A, then moves by
+      // du = dt (u + W x S_mid), W = w_B - w_A, read in the mid-step frame (n, t1, t2)_mid = (I - h [w_A]x)(...).
+      // In that frame W x S has the components (s2 W_1 - s1 W_2, -s2 W_n, s1 W_n): per CP the increment is
+      // du0 plus four products.
+      const Vec3 wa = omega[a], wb = omega[bb];
+      const Vec3 dv = velocity[bb] - velocity[a];
+      const Vec3 wa_arm_a = wa.cross(arm_a);
+      const Vec3 u = increment_dt * (dv + wb.cross(arm_b + h * (dv - wa_arm_a)) - wa.cross(arm_a - h * wa_arm_a));
+      const Vec3 w = increment_dt * (wb - wa);
+      const Vec3 n_mid = n - h * wa.cross(n);
+      const Vec3 t1_mid = t1 - h * wa.cross(t1);
+      const Vec3 t2_mid = t2 - h * wa.cross(t2);
+      const double du0_n = u.dot(n_mid), du0_1 = u.dot(t1_mid), du0_2 = u.dot(t2_mid);
+      const double w_n = w.dot(n_mid), w_1 = w.dot(t1_mid), w_2 = w.dot(t2_mid);
+      const auto& p = properties[property[c]];
       const double kn = L::normal_stiffness(p);
       const double ks = L::shear_stiffness(p);
-      double dissipated = 0.0;
-      auto& spring = spring_state[k];
-      // Spring elongations in the sense of the stresses: closing the gap compresses, shear stress opposes du_s.
-      const double sn = r.normal_stress + damping.spring_stress(spring[0], kn, -du_n, increment_dt, active, dissipated);
-      const double s1 = r.shear_stress[0] + damping.spring_stress(spring[1], ks, -du_s[0], increment_dt, active, dissipated);
-      const double s2 = r.shear_stress[1] + damping.spring_stress(spring[2], ks, -du_s[1], increment_dt, active, dissipated);
-      const double area = area_of[k];
-      force[k] = area * (sn * n + s1 * t1 + s2 * t2);
-      // Only what can be non-zero is stored: a law or a policy that never dissipates costs no memory traffic here.
-      if constexpr (!std::is_same_v<L, contact::Elastic>) slip_dissipation[k] += area * r.dissipated;
-      if constexpr (!std::is_same_v<typename Damping::ContactState, damping::NoState>)
-        viscous_dissipation[k] += area * dissipated;
+      // Resultants in the contact frame: force (normal, t1, t2) and moment about the origin.
+      double fn = 0, f1 = 0, f2 = 0, mn = 0, m1 = 0, m2 = 0;
+      const std::uint32_t end = first_point[c + 1];
+      for (std::uint32_t k = first_point[c]; k < end; ++k) {
+        const double x1 = plane_1[k], x2 = plane_2[k];
+        const double du_n = du0_n + x2 * w_1 - x1 * w_2;
+        const contact::Shear du_s{du0_1 - x2 * w_n, du0_2 + x1 * w_n};
+        const contact::Response r = L::update(p, history[k], du_n, du_s);
+        const bool active = L::damping_active(p, history[k]);
+        double dissipated = 0.0;
+        auto& spring = spring_state[k];
+        // Spring elongations in the sense of the stresses: closing the gap compresses, shear stress opposes du_s.
+        const double sn = r.normal_stress + damping.spring_stress(spring[0], kn, -du_n, increment_dt, active, dissipated);
+        const double s1 = r.shear_stress[0] + damping.spring_stress(spring[1], ks, -du_s[0], increment_dt, active, dissipated);
+        const double s2 = r.shear_stress[1] + damping.spring_stress(spring[2], ks, -du_s[1], increment_dt, active, dissipated);
+        traction[k] = {sn, s1, s2};
+        const double area = area_of[k];
+        const double an = area * sn, a1 = area * s1, a2 = area * s2;
+        fn += an;
+        f1 += a1;
+        f2 += a2;
+        // S x f with S = x1 t1 + x2 t2, f = an n + a1 t1 + a2 t2 (n x t1 = t2, t1 x t2 = n, t2 x n = t1).
+        mn += x1 * a2 - x2 * a1;
+        m1 += x2 * an;
+        m2 -= x1 * an;
+        // Only what can be non-zero is stored: a law or a policy that never dissipates costs no memory traffic here.
+        if constexpr (!std::is_same_v<L, contact::Elastic>) slip_dissipation[k] += area * r.dissipated;
+        if constexpr (!std::is_same_v<typename Damping::ContactState, damping::NoState>)
+          viscous_dissipation[k] += area * dissipated;
+      }
+      const Vec3 f = fn * n + f1 * t1 + f2 * t2;
+      const Vec3 m_origin = mn * n + m1 * t1 + m2 * t2;
+      contact_force[c] = f;
+      contact_moment[2 * c] = -(arm_a.cross(f) + m_origin);
+      contact_moment[2 * c + 1] = arm_b.cross(f) + m_origin;
     }
   }
 
-  /// Gather, gravity, damped velocity update, position and orientation update, for every block.
+  /// Gather, gravity, damped velocity update; then position and orientation update, for every block.
   void block_pass(double increment_dt, bool move = true) {
     auto& b = model_->bodies;
     const auto count = static_cast<std::ptrdiff_t>(b.size());
@@ -549,24 +635,24 @@ class Simulation {
     const Vec3 base_velocity = model_->base_velocity(time_ + 0.5 * dt);
     if (move) base_displacement_ += dt * base_velocity;
     const Damping& damping = damping_;
+    const Vec3 base_moved = base_displacement_ - detected_base_displacement_;
+    const double redetection = settings_.redetection();
+    bool moved = false;
 #pragma omp parallel for schedule(static) if (count > 1024)
     for (std::ptrdiff_t ii = 0; ii < count; ++ii) {
       const auto i = static_cast<std::size_t>(ii);
-      // Gather in a fixed order. Moments about the centroid come from the CP's arm in this block's body frame:
-      // sum_k (arm_k x f_k) = R sum_k (arm_k x R^T f_k), one rotation per block instead of one per CP.
+      // Gather the contacts' resultants in a fixed order.
       Vec3 force = Vec3::Zero();
-      Vec3 moment_body = Vec3::Zero();
-      const Mat3 rt = b.rotation[i].transpose();
+      Vec3 moment = Vec3::Zero();
       for_each_group([&](const auto& g) {
         for (std::uint32_t e = g.first[i]; e < g.first[i + 1]; ++e) {
           const std::uint32_t code = g.entry[e];
-          const std::uint32_t k = code >> 1;
-          const Vec3 f = (code & 1u) ? Vec3(g.force[k]) : Vec3(-g.force[k]);
-          force += f;
-          moment_body += ((code & 1u) ? g.arm_b[k] : g.arm_a[k]).cross(rt * f);
+          // Branch-free: the side of the block in the contact is random from one entry to the next.
+          const double sign = static_cast<double>(code & 1u) * 2.0 - 1.0;
+          force += sign * g.force[code >> 1];
+          moment += g.moment[code];
         }
       });
-      const Vec3 moment = b.rotation[i] * moment_body;
       const model::Motion motion = b.motion[i];
       if (motion == model::Motion::base) {
         b.force[i] = force;
@@ -583,8 +669,8 @@ class Simulation {
         b.moment[i] = moment;
         continue;
       }
-      const double m = b.mass[i];
-      force += m * gravity;
+      const damping::Inertia m{b.mass[i], inverse_mass_[i]};
+      force += m.value * gravity;
       b.force[i] = force;
       b.moment[i] = moment;
       const std::uint8_t fixity = b.fixity[i];
@@ -597,8 +683,9 @@ class Simulation {
       // velocity (implicit midpoint, two fixed-point passes: dt |w| is tiny), which keeps the scheme time reversible.
       const Mat3& r = b.rotation[i];
       const Vec3& inertia = b.principal_inertia[i];
-      const Vec3 w_old_body = r.transpose() * b.angular_velocity[i];
-      const Vec3 m_applied = r.transpose() * moment;
+      const Vec3& inverse_inertia = inverse_inertia_[i];
+      const Vec3 w_old_body = rotate_back(r, b.angular_velocity[i]);
+      const Vec3 m_applied = rotate_back(r, moment);
       Vec3 w_body = w_old_body;
       double rotation_dissipated = 0.0;
       for (int pass = 0; pass < 3; ++pass) {
@@ -606,30 +693,41 @@ class Simulation {
         const Vec3 m_body = m_applied - w_mid.cross(inertia.cwiseProduct(w_mid));
         rotation_dissipated = 0.0;
         for (int c = 0; c < 3; ++c)
-          w_body[c] = damping.velocity_update(w_old_body[c], m_body[c], inertia[c], dt, rotation_dissipated);
+          w_body[c] = damping.velocity_update(w_old_body[c], m_body[c], {inertia[c], inverse_inertia[c]}, dt, rotation_dissipated);
       }
       dissipated += rotation_dissipated;
-      Vec3 w = r * w_body;
+      Vec3 w = rotate(r, w_body);
       if (fixity & model::Fixity::all_rotations) {
         for (int c = 0; c < 3; ++c)
           if (fixity & (8u << c)) w[c] = 0.0;
-        w_body = r.transpose() * w;
+        w_body = rotate_back(r, w);
       }
       b.velocity[i] = v;
       b.angular_velocity[i] = w;
       // Kinetic energy at step n from the two half-step velocities: conserved exactly by the undamped leapfrog.
-      kinetic_[i] = 0.5 * m * v_old.dot(v) + 0.5 * w_old_body.cwiseProduct(inertia).dot(w_body);
+      kinetic_[i] = 0.5 * m.value * v_old.dot(v) + 0.5 * w_old_body.cwiseProduct(inertia).dot(w_body);
       viscous_[i] += dissipated;
       // Work of gravity over the move that brought the block to x_n, where the forces and energies are evaluated.
-      gravity_work_[i] += m * gravity.dot(v_old) * increment_dt;
-      if (!move) continue;
-      b.position[i] += dt * v;
-      const double angle = w.norm() * dt;
-      if (angle > 0) {
-        b.orientation[i] = (Quaternion(Eigen::AngleAxisd(angle, w / w.norm())) * b.orientation[i]).normalized();
-        b.rotation[i] = b.orientation[i].toRotationMatrix();
-      }
+      gravity_work_[i] += m.value * gravity.dot(v_old) * increment_dt;
     }
+    if (!move) return;
+    // Positions and orientations in a loop of their own: its short independent iterations overlap in the CPU,
+    // where the long dependency chain of a fused one (forces -> velocities -> orientation) did not.
+#pragma omp parallel for schedule(static) if (count > 1024) reduction(|| : moved)
+    for (std::ptrdiff_t ii = 0; ii < count; ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      if (b.motion[i] != model::Motion::free) continue;
+      const Vec3& v = b.velocity[i];
+      const Vec3& w = b.angular_velocity[i];
+      b.position[i] += dt * v;
+      b.orientation[i] = turned(b.orientation[i], w, dt);
+      b.rotation[i] = rotation_matrix(b.orientation[i]);
+      // Moved (relative to the base) by more than the redetection distance since the last detection? Rotation
+      // counts with the block's radius.
+      const double angle = small_angle_between(b.orientation[i], detected_orientation_[i]);
+      moved = moved || (b.position[i] - detected_position_[i] - base_moved).norm() + angle * radius_[i] > redetection;
+    }
+    moved_since_detection_ = moved_since_detection_ || moved;
   }
 
   EnergyReport energy_terms() const {
@@ -645,20 +743,22 @@ class Simulation {
     }
     for_each_group([&](const auto& g) {
       using L = typename std::remove_cvref_t<decltype(g)>::LawType;
-      for (std::size_t k = 0; k < g.size(); ++k) {
-        const auto& p = g.properties[g.property[k]];
-        double stored = L::stored_energy(p, g.history[k]);
-        if constexpr (requires { damping_.stored_energy(g.spring_state[k][0], 1.0); }) {
-          // The loop accumulated the work done on the damping springs; what they still store is not dissipated.
-          const double branches = damping_.stored_energy(g.spring_state[k][0], L::normal_stiffness(p)) +
-                                  damping_.stored_energy(g.spring_state[k][1], L::shear_stiffness(p)) +
-                                  damping_.stored_energy(g.spring_state[k][2], L::shear_stiffness(p));
-          stored += branches;
-          e.viscous -= g.area[k] * branches;
+      for (std::size_t c = 0; c < g.contacts(); ++c) {
+        const auto& p = g.properties[g.property[c]];
+        for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k) {
+          double stored = L::stored_energy(p, g.history[k]);
+          if constexpr (requires { damping_.stored_energy(g.spring_state[k][0], 1.0); }) {
+            // The loop accumulated the work done on the damping springs; what they still store is not dissipated.
+            const double branches = damping_.stored_energy(g.spring_state[k][0], L::normal_stiffness(p)) +
+                                    damping_.stored_energy(g.spring_state[k][1], L::shear_stiffness(p)) +
+                                    damping_.stored_energy(g.spring_state[k][2], L::shear_stiffness(p));
+            stored += branches;
+            e.viscous -= g.area[k] * branches;
+          }
+          e.elastic += g.area[k] * stored;
+          e.slip += g.slip_dissipation[k];
+          e.viscous += g.viscous_dissipation[k];
         }
-        e.elastic += g.area[k] * stored;
-        e.slip += g.slip_dissipation[k];
-        e.viscous += g.viscous_dissipation[k];
       }
     });
     return e;
@@ -675,7 +775,10 @@ class Simulation {
   int steps_since_check_ = 0;
   int detections_ = 0;
   bool pending_increment_ = false;
+  bool moved_since_detection_ = false;
   std::vector<double> kinetic_, gravity_work_, base_work_, viscous_, radius_;
+  std::vector<double> inverse_mass_;     // 1/kg, of each block (set with the block arrays)
+  std::vector<Vec3> inverse_inertia_;    // 1/(kg m^2), principal
   std::vector<Vec3> detected_position_;
   Vec3 base_displacement_ = Vec3::Zero();           // m, integral of the base velocity
   Vec3 detected_base_displacement_ = Vec3::Zero();  // at the last detection
@@ -684,6 +787,7 @@ class Simulation {
   bool energy_reference_pending_ = true;
   double retired_slip_ = 0, retired_viscous_ = 0;  // J, dissipated at CPs that no longer exist
   std::array<std::vector<std::uint8_t>, sizeof...(Laws)> taken_over_;  // old CPs already matched, during a detection
+  std::array<std::unordered_map<std::uint64_t, std::uint32_t>, sizeof...(Laws)> old_contacts_;  // by block pair, idem
 };
 
 }  // namespace blockdem
