@@ -6,6 +6,7 @@
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/contact/elastic.hpp"
 #include "blockdem/contact/mohr_coulomb.hpp"
+#include "blockdem/contact/softening.hpp"
 #include "blockdem/core/constexpr_math.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/random.hpp"
