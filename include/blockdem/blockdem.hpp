@@ -2,6 +2,7 @@
 // One include for all of blockdem.
 
 #include "blockdem/analysis/arch.hpp"
+#include "blockdem/analysis/joint_test.hpp"
 #include "blockdem/analysis/rocking.hpp"
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/contact/elastic.hpp"
