@@ -164,6 +164,7 @@ struct ElastoSoftening {
     double elastic_limit_closure = 0;  // m, f_c / (3 k_n): the hardening starts
     double peak_closure = 0;           // m, 5 f_c / (3 k_n): the compressive peak
     double hardening_span = 0;         // m, peak_closure - elastic_limit_closure
+    double inverse_cap_shear_factor = 0;  // 1 / C_s, 0 without the shear term
 
     Parameters() = default;
     bool operator==(const Parameters&) const = default;
@@ -223,6 +224,7 @@ struct ElastoSoftening {
       tension_softening_rate = tensile_strength / (g.tension - tension_elastic);
       shear_softening_rate = cohesion / g.shear;
       compression_softening_rate = compressive_strength / (g.compression - compression_elastic);
+      inverse_cap_shear_factor = cap_shear > 0 ? 1.0 / cap_shear : 0.0;
     }
 
     /// Stiffnesses from eq. 7, fracture energies from eq. 4-6, no residual tension or cohesion, residual friction
@@ -374,7 +376,7 @@ struct ElastoSoftening {
         0.0, p.residual_cohesion + p.cohesion_drop * intact + sigma * (p.tan_residual_friction + p.friction_drop * intact));
     double limit2 = coulomb * coulomb;
     if (sigma > 0 && p.cap_shear_factor > 0)
-      limit2 = std::min(limit2, std::max(0.0, cap * cap - sigma * sigma) / p.cap_shear_factor);
+      limit2 = std::min(limit2, std::max(0.0, cap * cap - sigma * sigma) * p.inverse_cap_shear_factor);
     return limit2;
   }
 
@@ -439,7 +441,7 @@ struct ElastoSoftening {
     const double beta = p.shear_softening_rate;
     const double B = p.residual_cohesion + sigma * p.tan_residual_friction;
     const double A = intact * (p.cohesion_drop + sigma * p.friction_drop);
-    const double E = (sigma > 0 && p.cap_shear_factor > 0) ? std::sqrt(std::max(0.0, cap * cap - sigma * sigma) / p.cap_shear_factor)
+    const double E = (sigma > 0 && p.cap_shear_factor > 0) ? std::sqrt(std::max(0.0, cap * cap - sigma * sigma) * p.inverse_cap_shear_factor)
                                                           : std::numeric_limits<double>::infinity();
     auto coulomb = [&](double x) { return B + A * std::exp(-beta * x); };
     Slip r;
