@@ -97,8 +97,10 @@ struct MasonryJointProperties {
 ///   at the peak, because with secant unloading that energy is lost too; this way a full separation dissipates G_f^I.
 /// - Shear: elastic with k_s (also on unloading after the peak), Coulomb limit c(d) + sigma tan(phi(d)) (sigma
 ///   compression positive, so tension lowers it, never below 0); each metre of plastic slip multiplies (1 - d) by
-///   exp(-beta_s), beta_s = c / G_f^II (DESIGN), so the loss of the cohesion dissipates G_f^II; friction keeps
-///   dissipating sigma tan(phi_r) per metre of slip at the residual.
+///   exp(-beta_s), beta_s = c / G_f^II (DESIGN), so the loss of the cohesion dissipates G_f^II (with c_r = 0; with a
+///   residual cohesion, (1 - c_r / c) G_f^II; a friction angle softening to phi_r adds sigma (tan phi - tan phi_r) /
+///   beta_s); friction keeps dissipating sigma tan(phi_r) per metre of slip at the residual. In 2D the return is
+///   radial, as in MohrCoulomb. Likewise a residual f_t,r keeps beta_t: the joint then never separates.
 /// - Compression (gap < 0, closure s = -gap): elastic to f_c/3 (as Lourenço and Rots 1997), then a parabola tangent to
 ///   the elastic line that reaches f_c with zero slope at s_p = 5 f_c / (3 k_n), then exponential softening
 ///   f_c exp(-beta_c (s - s_p)), which also counts as damage d_c (a crushed joint has lost its bond). Unloading and
@@ -112,8 +114,9 @@ struct MasonryJointProperties {
 /// - The step is split: the normal increment at fixed shear displacement, then the shear increment at fixed gap. If
 ///   the normal part shrank the Coulomb/cap limit below the old shear stress, that stress first relaxes at fixed
 ///   shear displacement; if shear damage lowered f_t(d) below a tensile stress, it relaxes at fixed gap. Every part
-///   of `dissipated` is the exact work minus the change of stored energy along that split path, hence never negative
-///   and, for monotonic loading, independent of the step size.
+///   of `dissipated` is the work minus the change of stored energy along that split path (exact for collinear shear
+///   increments; the radial return's plastic work otherwise), hence never negative and, for monotonic loading,
+///   independent of the step size. The split differs from a straight path by a second-order term per step.
 struct ElastoSoftening {
   struct Strengths {
     double tensile = 0;                   // f_t, Pa
