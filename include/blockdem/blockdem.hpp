@@ -2,10 +2,12 @@
 // One include for all of blockdem.
 
 #include "blockdem/analysis/arch.hpp"
+#include "blockdem/analysis/joint_test.hpp"
 #include "blockdem/analysis/rocking.hpp"
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/contact/elastic.hpp"
 #include "blockdem/contact/mohr_coulomb.hpp"
+#include "blockdem/contact/softening.hpp"
 #include "blockdem/core/constexpr_math.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/random.hpp"

@@ -5,6 +5,7 @@
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/contact/elastic.hpp"
 #include "blockdem/contact/mohr_coulomb.hpp"
+#include "blockdem/contact/softening.hpp"
 #include "blockdem/damping/concepts.hpp"
 #include "blockdem/damping/local.hpp"
 #include "blockdem/damping/mass_proportional.hpp"
@@ -28,6 +29,7 @@ struct NoVelocityUpdate {
 using namespace blockdem;
 static_assert(contact::ContactLaw<contact::Elastic>);
 static_assert(contact::ContactLaw<contact::MohrCoulomb>);
+static_assert(contact::ContactLaw<contact::ElastoSoftening>);
 static_assert(!contact::ContactLaw<NotALaw>);
 static_assert(!contact::ContactLaw<int>);
 static_assert(damping::DampingPolicy<damping::None>);
