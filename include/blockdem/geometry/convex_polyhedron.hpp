@@ -119,6 +119,29 @@ inline ConvexPolyhedron make_hexahedron(const std::array<Vec3, 8>& c) {
   return p;
 }
 
+/// A prism: the planar convex polygon `base` (in either winding) swept along `extrusion`, which must not lie in
+/// its plane. Vault blocks, infill slices and beams are prisms.
+inline ConvexPolyhedron make_prism(const std::vector<Vec3>& base, const Vec3& extrusion) {
+  const int n = static_cast<int>(base.size());
+  ConvexPolyhedron p;
+  p.vertices = base;
+  for (const auto& v : base) p.vertices.push_back(v + extrusion);
+  std::vector<int> bottom, top;
+  for (int i = 0; i < n; ++i) {
+    bottom.push_back(n - 1 - i);
+    top.push_back(n + i);
+    p.faces.push_back({i, (i + 1) % n, n + (i + 1) % n, n + i});
+  }
+  p.faces.push_back(bottom);
+  p.faces.push_back(top);
+  // Winding such that the bottom's normal points against the extrusion: otherwise turn every face around.
+  Vec3 area = Vec3::Zero();
+  for (int i = 0; i < n; ++i) area += base[static_cast<std::size_t>(i)].cross(base[static_cast<std::size_t>((i + 1) % n)]);
+  if (area.dot(extrusion) < 0)
+    for (auto& face : p.faces) std::reverse(face.begin(), face.end());
+  return p;
+}
+
 /// The axis-aligned box [lo, hi].
 inline ConvexPolyhedron make_box(const Vec3& lo, const Vec3& hi) {
   return make_hexahedron({Vec3(lo.x(), lo.y(), lo.z()), Vec3(hi.x(), lo.y(), lo.z()), Vec3(hi.x(), hi.y(), lo.z()),

@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace blockdem::io {
 
@@ -57,6 +58,34 @@ class JsonObject {
     text_ += json;
     return *this;
   }
+  /// A nested object, indented one level deeper.
+  JsonObject& add(std::string_view key, const JsonObject& value) {
+    write_key(key);
+    append_indented(value.str());
+    return *this;
+  }
+  /// An array of objects, one per line group, indented one level deeper.
+  JsonObject& add(std::string_view key, const std::vector<JsonObject>& values) {
+    write_key(key);
+    text_ += '[';
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      text_ += i ? ",\n    " : "\n    ";
+      const std::string item = values[i].str();
+      for (char c : item) {
+        text_ += c;
+        if (c == '\n') text_ += "    ";
+      }
+    }
+    text_ += values.empty() ? "]" : "\n  ]";
+    return *this;
+  }
+
+  /// A number as this writer prints it (shortest round trip; null if not finite), for building raw values.
+  static std::string number(double value) {
+    JsonObject o;
+    o.write_number(value);
+    return o.text_.substr(1);
+  }
 
   std::string str() const { return text_ + (first_ ? "}" : "\n}"); }
 
@@ -75,6 +104,12 @@ class JsonObject {
     char buffer[32];
     const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
     text_.append(buffer, result.ptr);
+  }
+  void append_indented(const std::string& nested) {
+    for (char c : nested) {
+      text_ += c;
+      if (c == '\n') text_ += "  ";
+    }
   }
   void write_string(std::string_view value) {
     text_ += '"';

@@ -84,6 +84,42 @@ inline void write_blocks_vtu(const std::string& path, const model::Model& model,
   if (!out) throw InvalidArgument("vtk: writing '" + path + "' failed");
 }
 
+/// Writes points (e.g. the contact points found before a run) as vertices with per-point scalar fields (name -> one
+/// value per point) and vector fields (name -> one vector per point).
+inline void write_points_vtu(const std::string& path, const std::vector<Vec3>& points, const BlockFields& scalars,
+                             const std::map<std::string, std::vector<Vec3>>& vectors = {}) {
+  auto check = [&](const std::string& name, std::size_t size) {
+    if (size != points.size())
+      throw InvalidArgument("vtk: point field '" + name + "' has " + std::to_string(size) + " values for " +
+                            std::to_string(points.size()) + " points");
+  };
+  for (const auto& [name, values] : scalars) check(name, values.size());
+  for (const auto& [name, values] : vectors) check(name, values.size());
+  auto out = detail::open_for_writing(path);
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "<UnstructuredGrid><Piece NumberOfPoints=\"" << points.size() << "\" NumberOfCells=\"" << points.size() << "\">\n";
+  detail::write_points(out, points);
+  std::vector<int> connectivity(points.size()), offsets(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    connectivity[i] = static_cast<int>(i);
+    offsets[i] = static_cast<int>(i + 1);
+  }
+  out << "<Cells>\n";
+  detail::write_array(out, "connectivity", connectivity);
+  detail::write_array(out, "offsets", offsets);
+  out << "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+  for (std::size_t i = 0; i < points.size(); ++i) out << "1 ";  // VTK_VERTEX
+  out << "\n</DataArray>\n</Cells>\n<PointData>\n";
+  for (const auto& [name, values] : scalars) detail::write_array(out, name, values);
+  for (const auto& [name, values] : vectors) {
+    std::vector<double> flat;
+    for (const auto& v : values) flat.insert(flat.end(), {v.x(), v.y(), v.z()});
+    detail::write_array(out, name, flat, 3);
+  }
+  out << "</PointData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+  if (!out) throw InvalidArgument("vtk: writing '" + path + "' failed");
+}
+
 /// Writes the contact points of a simulation as vertices with normal_stress, shear_stress (Pa), gap (m), area (m^2),
 /// damage and normal.
 template <class Simulation>
