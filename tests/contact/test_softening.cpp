@@ -472,3 +472,29 @@ TEST_CASE("softening: a joint pulled apart in the integrator dissipates G_f^I A 
   MESSAGE("pull-off: slip dissipation " << e.slip << " J, balance error " << e.balance_error << " (None), "
                                         << m.balance_error << " (Maxwell<3>, viscous " << m.viscous << " J)");
 }
+
+TEST_CASE("softening: a joint that broke and separated does not heal when it closes again") {
+  // Reference: the bond exists only where the joint was at the start; contact points created during the run start
+  // from the failed state (damage 1: no tension, residual cohesion).
+  auto s = test::block_on_base(1, 1, 1);
+  s.model.gravity = Vec3(0, 0, 200);  // pulls the block off, as above
+  s.model.bodies.fixity[s.block] = model::Fixity::translation_x | model::Fixity::translation_y | model::Fixity::all_rotations;
+  const Parameters joint = table1();
+  Simulation<damping::None, ElastoSoftening> sim(s.model, damping::None{}, [&](int, int) { return joint; });
+  sim.set_timestep(1e-5);
+  double intact_at_start = 1;
+  sim.visit_contacts([&](const auto& c) { intact_at_start = std::min(intact_at_start, 1.0 - c.damage); });
+  CHECK(intact_at_start == 1.0);
+  for (int i = 0; i < 2000; ++i) sim.step();
+  REQUIRE(sim.contact_points() == 0);  // separated beyond the contact tolerance: the CPs are gone
+  s.model.gravity = Vec3(0, 0, -200);  // and back down
+  int steps = 0;
+  while (sim.contact_points() == 0 && steps < 20000) {
+    sim.step();
+    ++steps;
+  }
+  REQUIRE(sim.contact_points() == 4);
+  double smallest_damage = 1;
+  sim.visit_contacts([&](const auto& c) { smallest_damage = std::min(smallest_damage, c.damage); });
+  CHECK(smallest_damage == 1.0);
+}

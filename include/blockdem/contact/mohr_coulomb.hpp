@@ -71,11 +71,12 @@ struct MohrCoulomb {
     const bool now_failed = h.failed != 0;
     const double limit = std::fmax(0.0, (now_failed ? p.residual_cohesion : p.cohesion) +
                                             std::fmax(sigma, 0.0) * (now_failed ? p.tan_residual_friction : p.tan_friction));
-    const double magnitude = std::sqrt(tau[0] * tau[0] + tau[1] * tau[1]);
+    const double magnitude2 = tau[0] * tau[0] + tau[1] * tau[1];
     double dissipated = 0.0;
-    h.slipping = magnitude > limit;
+    h.slipping = magnitude2 > limit * limit;  // no square root unless it slips
     if (h.slipping) {  // slip: return to the Coulomb limit along the trial direction
-      const double scale = magnitude > 0 ? limit / magnitude : 0.0;
+      const double magnitude = std::sqrt(magnitude2);
+      const double scale = limit / magnitude;
       dissipated = limit * (magnitude - limit) / p.shear_stiffness;  // limit times the plastic slip
       tau = {tau[0] * scale, tau[1] * scale};
       if (p.cohesion > 0 || p.tensile_strength > 0) h.failed = 1;

@@ -130,19 +130,21 @@ struct Maxwell {
     // `dissipated` receives the work done on the branches; what they store (stored_energy) is subtracted when the
     // energy is reported, so that the loop needs no division.
     double total = 0.0;
-    double work = 0.0;
     if (dt <= 0.0) {  // no time passes (first step, forces recomputed after a detection): no relaxation
       for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) total += active ? s[i] : 0.0;
       return total;
     }
+    // The work on the branches, sum_i (old_i + updated_i) du / 2, from the two sums.
+    const double kdu = stiffness * du;
+    double old_total = 0.0;
     for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
       const double old = s[i];
-      const double updated = active ? old * decay_[i] + gain_[i] * stiffness * du : 0.0;
-      work += 0.5 * (old + updated) * du;
+      const double updated = active ? old * decay_[i] + gain_[i] * kdu : 0.0;
       s[i] = updated;
+      old_total += old;
       total += updated;
     }
-    dissipated += work;
+    dissipated += 0.5 * (old_total + total) * du;
     return total;
   }
   constexpr double velocity_update(double v, double force, Inertia mass, double dt, double&) const noexcept {

@@ -461,6 +461,7 @@ class Simulation {
       h.gap = c->gap;
       typename Group<L>::SpringState spring{};
       double slip = 0, viscous = 0;
+      bool matched = false;
       if (o) {
         auto& taken = taken_over_[law_index<L>()];
         for (std::uint32_t k = o->first_point[oc]; k < o->first_point[oc + 1]; ++k) {
@@ -471,6 +472,7 @@ class Simulation {
           e -= e.dot(n) * n;
           if (e.norm() > match) continue;
           taken[k] = 1;
+          matched = true;
           h = o->history[k];
           spring = o->spring_state[k];
           slip = o->slip_dissipation[k];
@@ -484,6 +486,13 @@ class Simulation {
           }
           break;
         }
+      }
+      // A CP that appears during the run (an impact after separation, a new overlap after sliding) was never part
+      // of a bonded joint: it starts from the law's failed state (no tension, residual cohesion), so that a joint
+      // that broke and separated does not heal when it closes again.
+      if (keep_history && !matched) {
+        if constexpr (requires { h.failed; }) h.failed = 1;
+        if constexpr (requires { h.damage; }) h.damage = 1.0;
       }
       g.add_point(d.dot(t1), d.dot(t2), c->area, h, spring, slip, viscous);
     }
