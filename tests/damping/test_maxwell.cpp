@@ -71,3 +71,25 @@ TEST_CASE("maxwell: Maxwell<N> policy and the eq. 20 timestep factor") {
   CHECK(damping::stiffness_factor(policy.branches) == test::approx(1.39));
   CHECK(policy.damping_ratio(10.0) == test::approx(policy.complex_modulus(10.0).damping_ratio()));
 }
+
+TEST_CASE("maxwell: spring_stresses (three springs at once) equals three spring_stress calls") {
+  // Reference: the per-spring update, which the damping-ratio tests validate against eq. 19.
+  damping::Maxwell<3> m({MaxwellBranch::from_peak(0.02, 2 * pi * 1.0), MaxwellBranch::from_peak(0.02, 2 * pi * 6.0),
+                         MaxwellBranch::from_peak(0.02, 2 * pi * 40.0)});
+  const double dt = 1e-4;
+  m.prepare(dt);
+  std::array<damping::Maxwell<3>::ContactState, 3> batch{}, single{};
+  double batch_work = 0, single_work = 0;
+  for (int step = 0; step < 200; ++step) {
+    const std::array<double, 3> du{1e-7 * std::sin(0.1 * step), -2e-7 * std::cos(0.07 * step), 3e-8 * std::sin(0.3 * step)};
+    const bool active = step < 150 || step > 160;  // released while "open", then active again
+    const double kn = 1e10, ks = 4e9;
+    const auto got = m.spring_stresses(batch, kn, ks, du, step == 0 ? 0.0 : dt, active, batch_work);
+    const std::array<double, 3> want{m.spring_stress(single[0], kn, du[0], step == 0 ? 0.0 : dt, active, single_work),
+                                     m.spring_stress(single[1], ks, du[1], step == 0 ? 0.0 : dt, active, single_work),
+                                     m.spring_stress(single[2], ks, du[2], step == 0 ? 0.0 : dt, active, single_work)};
+    for (std::size_t j = 0; j < 3; ++j) CHECK(got[j] == test::approx(want[j]).epsilon(1e-13).scale(1.0));
+  }
+  CHECK(batch_work == test::approx(single_work).epsilon(1e-12));
+  CHECK(single_work > 0);
+}

@@ -609,9 +609,17 @@ class Simulation {
         double dissipated = 0.0;
         auto& spring = spring_state[k];
         // Spring elongations in the sense of the stresses: closing the gap compresses, shear stress opposes du_s.
-        const double sn = r.normal_stress + damping.spring_stress(spring[0], kn, -du_n, increment_dt, active, dissipated);
-        const double s1 = r.shear_stress[0] + damping.spring_stress(spring[1], ks, -du_s[0], increment_dt, active, dissipated);
-        const double s2 = r.shear_stress[1] + damping.spring_stress(spring[2], ks, -du_s[1], increment_dt, active, dissipated);
+        double sn = r.normal_stress, s1 = r.shear_stress[0], s2 = r.shear_stress[1];
+        if constexpr (requires { damping.spring_stresses(spring, kn, ks, std::array<double, 3>{}, increment_dt, active, dissipated); }) {
+          const auto viscous = damping.spring_stresses(spring, kn, ks, {-du_n, -du_s[0], -du_s[1]}, increment_dt, active, dissipated);
+          sn += viscous[0];
+          s1 += viscous[1];
+          s2 += viscous[2];
+        } else {
+          sn += damping.spring_stress(spring[0], kn, -du_n, increment_dt, active, dissipated);
+          s1 += damping.spring_stress(spring[1], ks, -du_s[0], increment_dt, active, dissipated);
+          s2 += damping.spring_stress(spring[2], ks, -du_s[1], increment_dt, active, dissipated);
+        }
         traction[k] = {sn, s1, s2};
         const double area = area_of[k];
         const double an = area * sn, a1 = area * s1, a2 = area * s2;
