@@ -12,6 +12,8 @@
 #include "blockdem/core/units.hpp"
 #include "blockdem/geometry/mass_properties.hpp"
 #include "blockdem/geometry/queries.hpp"
+#include "blockdem/damping/none.hpp"
+#include "blockdem/integrate/simulation.hpp"
 #include "blockdem/models/cross_vault.hpp"
 
 using namespace blockdem;
@@ -303,4 +305,25 @@ TEST_CASE("cross vault: invalid options are rejected with the option and its ran
   CHECK(with([](auto& o) { o.slab_length_x = 3; }).find("the slab (3 x 4.9 m) must hold the plan") != std::string::npos);
   CHECK(with([](auto& o) { o.monitors = {{"", Component::vault, 0, 0, models::MonitorLevel::extrados}}; })
             .find("every monitor point needs a name") != std::string::npos);
+}
+
+TEST_CASE("cross vault: the model loads into one simulation with the three joint laws of the paper") {
+  // Reference: the joint kinds per component pair above; every detected CP lands in its law's group, and the
+  // critical timestep is that of the stiffest joint on the lightest block (eq. 1-3), finite and positive.
+  const auto& v = specimen();
+  model::Model m = models::build_rigid_model(v);
+  using Sim = Simulation<damping::None, contact::ElastoSoftening, contact::MohrCoulomb, contact::Elastic>;
+  Sim sim(m, damping::None{}, [&](int a, int b) {
+    return std::visit([](const auto& p) { return Sim::Properties(p); }, models::joint_law(v.joint(a, b)));
+  });
+  const auto check = models::check_assembly(v, m, model::ContactSettings{});
+  CHECK(sim.group<contact::ElastoSoftening>().size() == check.contact_points_by_joint[0]);
+  CHECK(sim.group<contact::MohrCoulomb>().size() == check.contact_points_by_joint[1]);
+  CHECK(sim.group<contact::Elastic>().size() == check.contact_points_by_joint[2]);
+  CHECK(sim.group<contact::MohrCoulomb>().size() == 8);  // two movable piers on the slab, four corners each
+  CHECK(sim.contact_points() == check.contact_points);
+  const double dt = sim.critical_timestep();
+  CHECK(dt > 0);
+  CHECK(dt < 1e-3);
+  MESSAGE("cross vault, rigid blocks: critical timestep " << dt << " s, " << sim.contact_points() << " CPs");
 }

@@ -21,10 +21,14 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "blockdem/contact/elastic.hpp"
+#include "blockdem/contact/mohr_coulomb.hpp"
+#include "blockdem/contact/softening.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/core/units.hpp"
@@ -95,21 +99,29 @@ struct JointParameters {
   double fracture_energy_compression = 0;  // N/m, G_c
 };
 
-/// Joint normal stiffness of a unit-mortar interface (Pa/m) from the unit and mortar moduli (Pa) and the mortar
-/// thickness (m): k_n = E_b E_m / (t_m (E_b - E_m)), eq. 7 (Lourenco 1996).
-inline double interface_normal_stiffness(double unit_modulus, double mortar_modulus, double mortar_thickness) {
-  if (!(unit_modulus > mortar_modulus && mortar_modulus > 0 && mortar_thickness > 0))
-    throw InvalidArgument("cross vault: eq. 7 needs E_b > E_m > 0 and a mortar thickness t_m > 0");
-  return unit_modulus * mortar_modulus / (mortar_thickness * (unit_modulus - mortar_modulus));  // eq. 7
-}
-/// Mode I fracture energy (N/m) from the tensile strength (Pa): G_f^I = 0.025 (2 f_t)^0.7 N/mm with f_t in MPa, eq. 4.
-inline double fracture_energy_tension(double tensile_strength) {
-  return 1e3 * 0.025 * std::pow(2.0 * tensile_strength * 1e-6, 0.7);  // eq. 4
-}
-/// Compressive fracture energy (N/m) from the compressive strength (Pa): G_c = 15 + 0.43 f_c - 0.0036 f_c^2 N/mm, eq. 6.
-inline double fracture_energy_compression(double compressive_strength) {
-  const double fc = compressive_strength * 1e-6;
-  return 1e3 * (15.0 + 0.43 * fc - 0.0036 * fc * fc);  // eq. 6
+/// The joint law of the contact library for a joint of the model, for Simulation<Damping, ElastoSoftening,
+/// MohrCoulomb, Elastic>: Softening -> contact::ElastoSoftening (residual friction = peak, no residual tension or
+/// cohesion), MohrCoulombFriction -> contact::MohrCoulomb, ElasticSteel -> contact::Elastic.
+using JointLaw = std::variant<contact::ElastoSoftening::Parameters, contact::MohrCoulomb::Parameters, contact::Elastic::Parameters>;
+inline JointLaw joint_law(const JointParameters& p) {
+  switch (p.kind) {
+    case JointKind::Softening: {
+      contact::ElastoSoftening::Strengths s;
+      s.tensile = p.tensile_strength;
+      s.cohesion = p.cohesion;
+      s.friction_angle = p.friction_angle;
+      s.compressive = p.compressive_strength;
+      return contact::ElastoSoftening::Parameters(
+          {p.normal_stiffness, p.shear_stiffness}, s,
+          {p.fracture_energy_tension, p.fracture_energy_shear, p.fracture_energy_compression});
+    }
+    case JointKind::MohrCoulombFriction:
+      return contact::MohrCoulomb::Parameters(p.normal_stiffness, p.shear_stiffness, p.tensile_strength, p.cohesion,
+                                              p.friction_angle);
+    case JointKind::ElasticSteel:
+      break;
+  }
+  return contact::Elastic::Parameters(p.normal_stiffness, p.shear_stiffness);
 }
 
 /// Where a monitor point sits: on the vault's extrados or intrados above/below a plan position, or on the top face
@@ -486,15 +498,16 @@ inline CrossVault make_cross_vault(const CrossVaultOptions& options = {}) {
   // Joint laws per component pair (Sect. 3.2).
   JointParameters softening;
   softening.kind = JointKind::Softening;
-  softening.normal_stiffness = interface_normal_stiffness(o.unit_modulus, o.mortar_modulus, o.joint_thickness);  // eq. 7
-  softening.shear_stiffness = softening.normal_stiffness / (2 * (1 + o.unit_poisson));                          // eq. 7
+  const auto stiffness = contact::joint_stiffness_from_eq7(o.unit_modulus, o.mortar_modulus, o.joint_thickness, o.unit_poisson);
+  softening.normal_stiffness = stiffness.normal;  // eq. 7
+  softening.shear_stiffness = stiffness.shear;    // eq. 7
   softening.tensile_strength = o.tensile_strength;
   softening.cohesion = o.cohesion;
   softening.friction_angle = o.friction_angle_deg * pi / 180.0;
   softening.compressive_strength = o.compressive_strength;
-  softening.fracture_energy_tension = fracture_energy_tension(o.tensile_strength);          // eq. 4
-  softening.fracture_energy_shear = 10.0 * softening.fracture_energy_tension;              // eq. 5
-  softening.fracture_energy_compression = fracture_energy_compression(o.compressive_strength);  // eq. 6
+  softening.fracture_energy_tension = contact::fracture_energy_tension_eq4(o.tensile_strength);
+  softening.fracture_energy_shear = contact::fracture_energy_shear_eq5(softening.fracture_energy_tension);
+  softening.fracture_energy_compression = contact::fracture_energy_compression_eq6(o.compressive_strength);
   JointParameters friction;
   friction.kind = JointKind::MohrCoulombFriction;
   friction.normal_stiffness = 10e9;  // 10 GPa/m
