@@ -124,40 +124,19 @@ inline void write_points_vtu(const std::string& path, const std::vector<Vec3>& p
 /// damage and normal.
 template <class Simulation>
 void write_contacts_vtu(const std::string& path, const Simulation& simulation) {
-  std::vector<Vec3> points;
-  std::vector<double> normal_stress, shear_stress, gap, area, damage, normal;
+  std::vector<Vec3> points, normal;
+  BlockFields fields;
+  for (const char* name : {"normal_stress", "shear_stress", "gap", "area", "damage"}) fields[name];
   simulation.visit_contacts([&](const auto& c) {
     points.push_back(c.position);
-    normal_stress.push_back(c.normal_stress);
-    shear_stress.push_back(c.shear_stress);
-    gap.push_back(c.gap);
-    area.push_back(c.area);
-    damage.push_back(c.damage);
-    for (int k = 0; k < 3; ++k) normal.push_back(c.normal[k]);
+    normal.push_back(c.normal);
+    fields["normal_stress"].push_back(c.normal_stress);
+    fields["shear_stress"].push_back(c.shear_stress);
+    fields["gap"].push_back(c.gap);
+    fields["area"].push_back(c.area);
+    fields["damage"].push_back(c.damage);
   });
-  auto out = detail::open_for_writing(path);
-  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-      << "<UnstructuredGrid><Piece NumberOfPoints=\"" << points.size() << "\" NumberOfCells=\"" << points.size() << "\">\n";
-  detail::write_points(out, points);
-  std::vector<int> connectivity(points.size()), offsets(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    connectivity[i] = static_cast<int>(i);
-    offsets[i] = static_cast<int>(i + 1);
-  }
-  out << "<Cells>\n";
-  detail::write_array(out, "connectivity", connectivity);
-  detail::write_array(out, "offsets", offsets);
-  out << "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-  for (std::size_t i = 0; i < points.size(); ++i) out << "1 ";  // VTK_VERTEX
-  out << "\n</DataArray>\n</Cells>\n<PointData Scalars=\"normal_stress\">\n";
-  detail::write_array(out, "normal_stress", normal_stress);
-  detail::write_array(out, "shear_stress", shear_stress);
-  detail::write_array(out, "gap", gap);
-  detail::write_array(out, "area", area);
-  detail::write_array(out, "damage", damage);
-  detail::write_array(out, "normal", normal, 3);
-  out << "</PointData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
-  if (!out) throw InvalidArgument("vtk: writing '" + path + "' failed");
+  write_points_vtu(path, points, fields, {{"normal", normal}});
 }
 
 }  // namespace blockdem::io
