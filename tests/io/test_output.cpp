@@ -3,6 +3,8 @@
 
 #include <doctest/doctest.h>
 
+#include <filesystem>
+
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -49,12 +51,12 @@ TEST_CASE("output: VTK blocks and contact points, histories and the run report")
   CHECK(history.displacement(k, 0).z() == test::approx(1e-3 / omega * std::sin(omega * (t - 0.5e-3))).epsilon(0.03));  // leapfrog phase
   CHECK(history.acceleration(k, 0).z() == test::approx(-1e-3 * omega * std::sin(omega * t - 1e-3 * omega)).epsilon(0.02));
 
-  io::write_blocks_vtu("test_blocks.vtu", s.model, {{"mass", {s.model.bodies.mass[0], s.model.bodies.mass[1]}}});
-  const auto blocks = slurp("test_blocks.vtu");
+  io::write_blocks_vtu((std::filesystem::temp_directory_path() / "blockdem_test_blocks.vtu").string(), s.model, {{"mass", {s.model.bodies.mass[0], s.model.bodies.mass[1]}}});
+  const auto blocks = slurp((std::filesystem::temp_directory_path() / "blockdem_test_blocks.vtu").string());
   CHECK(blocks.find("NumberOfPoints=\"16\" NumberOfCells=\"12\"") != std::string::npos);
   CHECK(blocks.find("Name=\"mass\"") != std::string::npos);
-  io::write_contacts_vtu("test_contacts.vtu", sim);
-  const auto contacts = slurp("test_contacts.vtu");
+  io::write_contacts_vtu((std::filesystem::temp_directory_path() / "blockdem_test_contacts.vtu").string(), sim);
+  const auto contacts = slurp((std::filesystem::temp_directory_path() / "blockdem_test_contacts.vtu").string());
   CHECK(contacts.find("NumberOfPoints=\"4\" NumberOfCells=\"4\"") != std::string::npos);
   CHECK(contacts.find("Name=\"normal_stress\"") != std::string::npos);
   CHECK_THROWS_AS(io::write_blocks_vtu("/no/such/dir/x.vtu", s.model), InvalidArgument);
@@ -62,6 +64,6 @@ TEST_CASE("output: VTK blocks and contact points, histories and the run report")
   const std::string report = io::run_report(sim, run).str();
   for (const char* field : {"\"dt\"", "\"steps\": 200", "\"wall_seconds\"", "\"ns_per_cp_step\"", "\"energy_balance_error\""})
     CHECK(report.find(field) != std::string::npos);
-  history.write_csv("test_history.csv");
-  CHECK(slurp("test_history.csv").rfind("time_s,top_ux,top_uy,top_uz,top_vx", 0) == 0);
+  history.write_csv((std::filesystem::temp_directory_path() / "blockdem_test_history.csv").string());
+  CHECK(slurp((std::filesystem::temp_directory_path() / "blockdem_test_history.csv").string()).rfind("time_s,top_ux,top_uy,top_uz,top_vx", 0) == 0);
 }
