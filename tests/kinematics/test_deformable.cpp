@@ -244,7 +244,7 @@ TEST_CASE("deformable density scaling: the target timestep is reached; the mass 
   const double real_nodes = std::accumulate(m.deformable.nodes.real_mass.begin(), m.deformable.nodes.real_mass.end(), 0.0);
   const double real_rigid = m.bodies.mass[rigid];
   const double unscaled = sim.timestep();
-  const double target = 2.5 * unscaled;
+  const double target = 1.5 * unscaled;
   const auto r = sim.scale_density_to(target);
   double added = 0;
   std::size_t scaled = 0;
@@ -264,6 +264,14 @@ TEST_CASE("deformable density scaling: the target timestep is reached; the mass 
   CHECK(r.added_mass == test::approx(added).epsilon(1e-12));
   CHECK(r.mass_increase_percent == test::approx(100 * added / (real_nodes + real_rigid)).epsilon(1e-12));
   CHECK(scaled == r.scaled_nodes);
+  // Confined to the finely meshed block: the coarse one keeps its real masses.
+  std::size_t scaled_coarse = 0, fine_nodes = 0;
+  for (std::size_t i = 0; i < m.deformable.nodes.size(); ++i) {
+    if (m.deformable.nodes.block[i] == coarse && m.deformable.nodes.density_scaling_factor(i) > 1) ++scaled_coarse;
+    if (m.deformable.nodes.block[i] == fine) ++fine_nodes;
+  }
+  MESSAGE("fine block: " << fine_nodes << " nodes; coarse block nodes scaled: " << scaled_coarse);
+  CHECK(scaled_coarse == 0);
   CHECK(scaled > 0);
   CHECK(scaled < m.deformable.nodes.size());
   // The weights stay real: at rest under gravity, the base carries the real weight.
