@@ -25,6 +25,12 @@
 
 using namespace blockdem;
 
+static_assert(kinematics::Kinematics<kinematics::Rigid>);
+static_assert(kinematics::Kinematics<kinematics::Deformable>);
+static_assert(!kinematics::Kinematics<double>);
+static_assert(kinematics::DeformableState<damping::Maxwell<3>, contact::Elastic>::tensor_form);
+static_assert(!kinematics::DeformableState<damping::MassProportional, contact::Elastic>::tensor_form);
+
 TEST_CASE("deformable mesh: a box meshed with a maximum edge, conforming, volume exact") {
   const auto box = geometry::make_box(Vec3(0, 0, 0), Vec3(1.0, 0.5, 0.3));
   const auto mesh = geometry::mesh_convex_polyhedron(box, 0.25, "box");

@@ -321,7 +321,6 @@ class Simulation {
         v.block_b = g.face_block[k];
         v.position = x[g.node[k]];
         v.force = g.force[k];
-        v.normal = g.traction[k][0] != 0 ? Vec3(g.force[k].normalized()) : Vec3::Zero();
         if constexpr (std::remove_cvref_t<decltype(g)>::FaceKinematics::deformable) {
           const auto& t = g.triangle[k];
           v.normal = -(x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).normalized();
@@ -343,35 +342,8 @@ class Simulation {
   // ---- the step ----
 
   void step() {
-    const double increment_dt = pending_increment_ ? dt_ : 0.0;
-    for_each_group([&](auto& g) { contact_pass(g, increment_dt); });
-    if (mixed_) mixed_forces(increment_dt);
-    // Joint histories are now at the current positions: the moment to detect contacts again if blocks have moved
-    // (relative to the base) by more than the redetection distance. Forces of the new set, then the block pass.
-    if (++steps_since_check_ >= settings_.redetection_check_interval) {
-      steps_since_check_ = 0;
-      if (moved_since_detection_) {
-        update_proxies();
-        assign_all(model::detect_contacts(model_->bodies, settings_), /*keep_history=*/true);
-        for_each_group([&](auto& g) { contact_pass(g, 0.0); });
-        if (mixed_) mixed_forces(0.0);
-      }
-    }
-    if (mixed_) {
-      block_pass<true>(increment_dt);
-      const bool nodes_moved = deformable_.node_pass(*model_, damping_, dt_, increment_dt, true, settings_.redetection());
-      moved_since_detection_ = moved_since_detection_ || nodes_moved;
-    } else {
-      block_pass(increment_dt);
-    }
-    // The scheme conserves 1/2 m v(n-1/2).v(n+1/2) + U(x_n): the reference is its value at the first step.
-    if (energy_reference_pending_) {
-      energy0_ = energy_terms();
-      energy_reference_pending_ = false;
-    }
-    pending_increment_ = true;
-    time_ += dt_;
-    ++steps_;
+    if (mixed_) mixed_step();
+    else step_impl<false>();
   }
 
   /// Reverses the motion exactly (up to rounding): after n more steps the blocks are back where they were n steps
@@ -941,6 +913,46 @@ class Simulation {
       e.slip += d.slip;
     }
     return e;
+  }
+
+  /// The step, specialised at compile time: the rigid-only instantiation is the rigid kernel exactly; the mixed
+  /// one adds the node contacts, elements and trusses, the extra forces on rigid blocks and the node pass. The mixed
+  /// step is kept out of line so that it does not change how the compiler inlines the rigid one.
+  [[gnu::noinline]] void mixed_step() { step_impl<true>(); }
+
+  template <bool Mixed>
+  void step_impl() {
+    const double increment_dt = pending_increment_ ? dt_ : 0.0;
+    for_each_group([&](auto& g) { contact_pass(g, increment_dt); });
+    if constexpr (Mixed) mixed_forces(increment_dt);
+    // Joint histories are now at the current positions: the moment to detect contacts again if blocks have moved
+    // (relative to the base) by more than the redetection distance. Forces of the new set, then the block pass.
+    if (++steps_since_check_ >= settings_.redetection_check_interval) {
+      steps_since_check_ = 0;
+      if (moved_since_detection_) {
+        if constexpr (Mixed) {
+          update_proxies();
+          assign_all(model::detect_contacts(model_->bodies, settings_), /*keep_history=*/true);
+        } else {
+          assign_contacts(model::detect_contacts(model_->bodies, settings_), /*keep_history=*/true);
+        }
+        for_each_group([&](auto& g) { contact_pass(g, 0.0); });
+        if constexpr (Mixed) mixed_forces(0.0);
+      }
+    }
+    block_pass<Mixed>(increment_dt);
+    if constexpr (Mixed) {
+      const bool nodes_moved = deformable_.node_pass(*model_, damping_, dt_, increment_dt, true, settings_.redetection());
+      moved_since_detection_ = moved_since_detection_ || nodes_moved;
+    }
+    // The scheme conserves 1/2 m v(n-1/2).v(n+1/2) + U(x_n): the reference is its value at the first step.
+    if (energy_reference_pending_) {
+      energy0_ = energy_terms();
+      energy_reference_pending_ = false;
+    }
+    pending_increment_ = true;
+    time_ += dt_;
+    ++steps_;
   }
 
   /// Node contacts, elements, trusses, then what they apply to rigid blocks.
