@@ -174,8 +174,8 @@ class DeformableState {
   }
 
   /// Constant-strain tetrahedra: strain increment from v(n-1/2) over the last move, stress, damping, nodal forces.
-  void element_pass(const model::Model& m, const Damping& damping, double increment_dt) {
-    auto& te = const_cast<model::Tetrahedra&>(m.deformable.tetrahedra);  // the stresses are the elements' state
+  void element_pass(model::Model& m, const Damping& damping, double increment_dt) {
+    auto& te = m.deformable.tetrahedra;
     const Vec3* __restrict const velocity = m.deformable.nodes.velocity.data();
     const auto count = static_cast<std::ptrdiff_t>(te.size());
     const auto* __restrict const materials = m.deformable.materials.data();
