@@ -3,6 +3,7 @@
 //
 //   arch --voussoirs 40 --thickness-ratio 0.15 --radius 1 --depth 0.5 --friction-angle 40 --lambda 0.1
 //        [--find-collapse] [--json] [--vtk PREFIX]
+//        [--deformable [--max-edge 0.25] [--young 5e9] [--poisson 0.2]] [--target-dt DT]
 //
 // Exit status: 0 on success, 2 on bad input.
 
@@ -33,6 +34,11 @@ int main(int argc, char** argv) {
   app.add_flag("--find-collapse", find_collapse, "find the collapse multiplier lambda by bisection to 0.005");
   app.add_flag("--json", json, "print a JSON object");
   app.add_option("--vtk", o.vtk_prefix, "write PREFIX_blocks.vtu and PREFIX_contacts.vtu (final state) for ParaView");
+  app.add_flag("--deformable", o.deformable, "mesh the voussoirs into constant-strain tetrahedra");
+  app.add_option("--max-edge", o.max_edge, "maximum tetrahedron edge, m")->capture_default_str();
+  app.add_option("--young", o.young, "Young's modulus of deformable voussoirs, Pa")->capture_default_str();
+  app.add_option("--poisson", o.poisson, "Poisson's ratio of deformable voussoirs, (-1, 0.5)")->capture_default_str();
+  app.add_option("--target-dt", o.target_dt, "partial density scaling to this timestep, s (0: none)")->capture_default_str();
   if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
   try {
     o.validate();
@@ -50,7 +56,11 @@ int main(int argc, char** argv) {
           .add("steps", static_cast<long long>(r.steps))
           .add("wall_seconds", r.wall_seconds)
           .add("dt", r.timestep)
+          .add("dt_critical_unscaled", r.dt_critical_unscaled)
+          .add("mass_increase_percent", r.mass_increase_percent)
           .add("blocks", static_cast<int>(r.blocks))
+          .add("nodes", static_cast<int>(r.nodes))
+          .add("tetrahedra", static_cast<int>(r.tetrahedra))
           .add("contact_points", static_cast<int>(r.contact_points));
       fmt::print("{}\n", out.str());
     } else {
@@ -58,6 +68,9 @@ int main(int argc, char** argv) {
                  o.thickness_ratio, o.radius, o.friction_angle_deg, o.lambda, r.stands ? "STANDS" : "COLLAPSES");
       fmt::print("max displacement {:.3e} m, unbalanced force ratio {:.2e}, {} steps of {:.3e} s, {:.2f} s\n",
                  r.max_displacement, r.unbalanced_ratio, r.steps, r.timestep, r.wall_seconds);
+      if (o.deformable)
+        fmt::print("deformable: {} nodes, {} tetrahedra, {} contact points; critical dt {:.3e} s unscaled, mass +{:.2f} %\n",
+                   r.nodes, r.tetrahedra, r.contact_points, r.dt_critical_unscaled, r.mass_increase_percent);
       if (find_collapse) fmt::print("collapse multiplier lambda = {:.4f} (bisection to 0.005)\n", lambda_collapse);
     }
   } catch (const InvalidArgument& e) {

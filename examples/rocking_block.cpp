@@ -4,6 +4,7 @@
 //   rocking_block --width 0.2 --height 1 [--depth 0.5] (--constant-acceleration A | --history FILE [--in-g])
 //   (a constant acceleration is ramped in over 0.2 s)
 //                 [--duration 2] [--friction-angle 45] [--out rotation.csv] [--json]
+//                 [--deformable [--max-edge 0.25] [--young 10e9] [--poisson 0.2]] [--target-dt DT]
 //
 // FILE has two columns, time (s) and acceleration (m/s^2, or g with --in-g). Exit status 2 on bad input.
 
@@ -40,6 +41,11 @@ int main(int argc, char** argv) {
   app.add_flag("--in-g", in_g, "the history's accelerations are in g");
   app.add_option("--out", out_path, "write time_s,rotation_rad,base_acceleration_m_s2 to this CSV file");
   app.add_flag("--json", json, "print a JSON object");
+  app.add_flag("--deformable", o.deformable, "mesh the block into constant-strain tetrahedra");
+  app.add_option("--max-edge", o.max_edge, "maximum tetrahedron edge, m")->capture_default_str();
+  app.add_option("--young", o.young, "Young's modulus of the deformable block, Pa")->capture_default_str();
+  app.add_option("--poisson", o.poisson, "Poisson's ratio of the deformable block, (-1, 0.5)")->capture_default_str();
+  app.add_option("--target-dt", o.target_dt, "partial density scaling to this timestep, s (0: none)")->capture_default_str();
   if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
   try {
     io::TwoColumns record;
@@ -71,7 +77,10 @@ int main(int argc, char** argv) {
       io::JsonObject j;
       j.add("uplift", r.uplift).add("max_rotation_rad", r.max_rotation).add("impacts", r.impacts)
           .add("overturned", r.overturned).add("uplift_threshold_m_s2", 9.81 * o.width / o.height)
-          .add("steps", static_cast<long long>(r.steps)).add("dt", r.timestep).add("wall_seconds", r.wall_seconds);
+          .add("steps", static_cast<long long>(r.steps)).add("dt", r.timestep).add("wall_seconds", r.wall_seconds)
+          .add("dt_critical_unscaled", r.dt_critical_unscaled).add("mass_increase_percent", r.mass_increase_percent)
+          .add("nodes", static_cast<int>(r.nodes)).add("tetrahedra", static_cast<int>(r.tetrahedra))
+          .add("contact_points", static_cast<int>(r.contact_points));
       fmt::print("{}\n", j.str());
     } else {
       fmt::print("block {:g} x {:g} x {:g} m (tan alpha = {:.4f}, static uplift at {:.4f} m/s^2)\n", o.width, o.depth,

@@ -31,6 +31,12 @@ struct ArchOptions {
   double collapse_displacement = 0; // m: a voussoir moving this far means collapse (0: a quarter of the thickness)
   long long max_steps = 400000;
   std::string vtk_prefix;           // if set: <prefix>_blocks.vtu and <prefix>_contacts.vtu at the end
+                                    // (and <prefix>_tetrahedra.vtu with the density scaling factor if deformable)
+  bool deformable = false;          // voussoirs meshed into constant-strain tetrahedra
+  double max_edge = 0.25;           // m, of the tetrahedra
+  double young = 5e9;               // Pa, of the voussoirs if deformable
+  double poisson = 0.2;
+  double target_dt = 0;             // s: partial density scaling to this timestep (0: none)
 
   void validate() const {
     auto check = [](bool ok, const char* what) {
@@ -45,6 +51,10 @@ struct ArchOptions {
     check(density > 0, "density must be > 0 kg/m^3");
     check(normal_stiffness > 0, "normal stiffness must be > 0 Pa/m");
     check(max_steps >= 100, "max steps must be >= 100");
+    check(max_edge > 0, "max edge must be > 0 m");
+    check(young > 0, "Young's modulus must be > 0 Pa");
+    check(poisson > -1 && poisson < 0.5, "Poisson's ratio must be in (-1, 0.5)");
+    check(target_dt >= 0, "target timestep must be >= 0 s (0: no density scaling)");
   }
 };
 
@@ -57,6 +67,9 @@ struct ArchResult {
   double timestep = 0;
   std::size_t blocks = 0;
   std::size_t contact_points = 0;
+  double dt_critical_unscaled = 0;  // s
+  double mass_increase_percent = 0;
+  std::size_t nodes = 0, tetrahedra = 0;
 };
 
 inline ArchResult analyse_arch(const ArchOptions& o) {
@@ -66,6 +79,9 @@ inline ArchResult analyse_arch(const ArchOptions& o) {
   const double thickness = o.thickness_ratio * o.radius;
   for (const auto& b : geometry::semicircular_arch(o.voussoirs, o.radius, thickness, o.depth))
     model.add_block(b.shape, o.density, b.name, 0, b.support ? model::Motion::fixed : model::Motion::free);
+  if (o.deformable)
+    for (std::size_t i = 0; i < model.bodies.size(); ++i)
+      if (model.bodies.motion[i] == model::Motion::free) model.make_deformable(i, o.max_edge, model::IsotropicElastic(o.young, o.poisson));
   model.gravity = Vec3(o.lambda * 9.81, 0, -9.81);
   const contact::MohrCoulomb::Parameters joint(o.normal_stiffness, 0.5 * o.normal_stiffness, 0, 0,
                                                 o.friction_angle_deg * pi / 180.0);
@@ -73,17 +89,24 @@ inline ArchResult analyse_arch(const ArchOptions& o) {
   contacts.tolerance = 1e-4 * o.radius;
   Simulation<damping::Local, contact::MohrCoulomb> sim(model, damping::Local{}, [&](int, int) { return joint; }, contacts);
   const auto initial = model.bodies.position;
+  const auto initial_nodes = model.deformable.nodes.position;
   const double limit = o.collapse_displacement > 0 ? o.collapse_displacement : 0.25 * thickness;
   ArchResult r;
   r.blocks = model.bodies.size();
   r.contact_points = sim.contact_points();
+  r.dt_critical_unscaled = sim.critical_timestep();
+  if (o.target_dt > 0) r.mass_increase_percent = sim.scale_density_to(o.target_dt).mass_increase_percent;
   r.timestep = sim.timestep();
+  r.nodes = model.deformable.nodes.size();
+  r.tetrahedra = model.deformable.tetrahedra.size();
   for (r.steps = 0; r.steps < o.max_steps; ++r.steps) {
     sim.step();
     if (r.steps % 50 != 49) continue;
     r.max_displacement = 0;
     for (std::size_t i = 0; i < model.bodies.size(); ++i)
       r.max_displacement = std::max(r.max_displacement, (model.bodies.position[i] - initial[i]).norm());
+    for (std::size_t i = 0; i < initial_nodes.size(); ++i)
+      r.max_displacement = std::max(r.max_displacement, (model.deformable.nodes.position[i] - initial_nodes[i]).norm());
     r.unbalanced_ratio = sim.unbalanced_force_ratio();
     if (r.max_displacement > limit) break;
     if (r.unbalanced_ratio <= o.unbalanced_tolerance) {
@@ -97,6 +120,7 @@ inline ArchResult analyse_arch(const ArchOptions& o) {
     for (std::size_t i = 0; i < model.bodies.size(); ++i) displacement[i] = (model.bodies.position[i] - initial[i]).norm();
     io::write_blocks_vtu(o.vtk_prefix + "_blocks.vtu", model, {{"displacement", displacement}});
     io::write_contacts_vtu(o.vtk_prefix + "_contacts.vtu", sim);
+    if (o.deformable) io::write_tetrahedra_vtu(o.vtk_prefix + "_tetrahedra.vtu", model, initial_nodes);
   }
   return r;
 }

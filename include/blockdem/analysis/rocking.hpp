@@ -30,6 +30,11 @@ struct RockingOptions {
   std::function<double(double)> base_acceleration = [](double) { return 0.0; };
   double uplift_rotation = 1e-3;  // rad: a rotation beyond this is uplift (the elastic rocking of the joint is ~1e-4)
   double record_interval = 1e-3;  // s
+  bool deformable = false;        // the block meshed into constant-strain tetrahedra (the base stays rigid)
+  double max_edge = 0.25;         // m
+  double young = 10e9;            // Pa
+  double poisson = 0.2;
+  double target_dt = 0;           // s: partial density scaling to this timestep (0: none)
 
   void validate() const {
     auto check = [](bool ok, const char* what) {
@@ -41,6 +46,10 @@ struct RockingOptions {
     check(normal_stiffness > 0, "normal stiffness must be > 0 Pa/m");
     check(duration > 0 && duration <= 1e4, "duration must be in (0, 1e4] s");
     check(record_interval > 0, "record interval must be > 0 s");
+    check(max_edge > 0, "max edge must be > 0 m");
+    check(young > 0, "Young's modulus must be > 0 Pa");
+    check(poisson > -1 && poisson < 0.5, "Poisson's ratio must be in (-1, 0.5)");
+    check(target_dt >= 0, "target timestep must be >= 0 s (0: no density scaling)");
   }
 };
 
@@ -53,6 +62,9 @@ struct RockingResult {
   long long steps = 0;
   double wall_seconds = 0;
   double timestep = 0;
+  double dt_critical_unscaled = 0;  // s
+  double mass_increase_percent = 0;
+  std::size_t nodes = 0, tetrahedra = 0, contact_points = 0;
 };
 
 inline RockingResult analyse_rocking(const RockingOptions& o) {
@@ -64,8 +76,12 @@ inline RockingResult analyse_rocking(const RockingOptions& o) {
                                     model::Motion::base);
   const auto block = model.add_block(geometry::make_box(Vec3(-0.5 * w, -0.5 * d, 0), Vec3(0.5 * w, 0.5 * d, h)), o.density, "block", 1);
   (void)base;
+  if (o.deformable) model.make_deformable(block, o.max_edge, model::IsotropicElastic(o.young, o.poisson));
   const contact::MohrCoulomb::Parameters joint(o.normal_stiffness, o.normal_stiffness, 0, 0, o.friction_angle_deg * pi / 180.0);
   Simulation<damping::Local, contact::MohrCoulomb> settle(model, damping::Local{}, [&](int, int) { return joint; });
+  RockingResult r;
+  r.dt_critical_unscaled = settle.critical_timestep();
+  if (o.target_dt > 0) r.mass_increase_percent = settle.scale_density_to(o.target_dt).mass_increase_percent;
   settle.solve_to_equilibrium(1e-6, 200000);
   Simulation<damping::None, contact::MohrCoulomb> sim(settle, damping::None{});
   // Base velocity: the integral of the acceleration, by the trapezoid rule on the timestep grid.
@@ -83,15 +99,27 @@ inline RockingResult analyse_rocking(const RockingOptions& o) {
     return Vec3((1 - f) * velocity[n] + f * velocity[n + 1], 0, 0);
   };
   const Quaternion q0 = model.bodies.orientation[block];
-  RockingResult r;
   r.timestep = dt;
+  r.nodes = model.deformable.nodes.size();
+  r.tetrahedra = model.deformable.tetrahedra.size();
+  r.contact_points = sim.contact_points();
+  // Deformable: the rotation about y from the bottom corner nodes at x = -w/2 and x = +w/2 (on y = 0 or nearest).
+  std::size_t heel = 0, toe = 0;
+  if (o.deformable) {
+    heel = model.nearest_node(block, Vec3(-0.5 * w, 0, 0));
+    toe = model.nearest_node(block, Vec3(0.5 * w, 0, 0));
+  }
+  const auto& nodes = model.deformable.nodes.position;
+  const double heel_z0 = o.deformable ? nodes[heel].z() : 0, toe_z0 = o.deformable ? nodes[toe].z() : 0;
+  const double lever = o.deformable ? nodes[toe].x() - nodes[heel].x() : 1.0;
   const double overturn = std::atan(w / h);
   double next_record = 0, last_sign = 0;
   while (sim.time() - t0 < o.duration) {
     sim.step();
     ++r.steps;
     const double t = sim.time() - t0;
-    const double theta = 2.0 * (model.bodies.orientation[block] * q0.conjugate()).vec().y();
+    const double theta = o.deformable ? ((nodes[heel].z() - heel_z0) - (nodes[toe].z() - toe_z0)) / lever
+                                      : 2.0 * (model.bodies.orientation[block] * q0.conjugate()).vec().y();
     r.max_rotation = std::max(r.max_rotation, std::abs(theta));
     if (std::abs(theta) > o.uplift_rotation) {
       const double sign = theta > 0 ? 1.0 : -1.0;

@@ -147,6 +147,57 @@ struct Maxwell {
     dissipated += 0.5 * (old_total + total) * du;
     return total;
   }
+  // Branches in parallel with the elastic stiffness D of a whole constant-strain tetrahedron (the paper attaches
+  // them to the internal elements as well as the joints): branch i carries a stress tensor S_i with
+  // S_i <- S_i e^(-dt/tau_i) + alpha_i tau_i (1 - e^(-dt/tau_i)) D de / dt, the same update as on a spring, applied to
+  // the elastic stress increment D de of the step. Branch-major storage: the six components of one branch are
+  // contiguous, so that the update vectorises.
+  using ElementState = std::array<std::array<double, 6>, static_cast<std::size_t>(N)>;  // Pa, xx yy zz xy yz zx
+
+  /// Adds the branch stresses to `stress` (Pa), given the elastic stress increment `elastic_increment` (Pa) and the
+  /// strain increment `strain_increment` (engineering shear strains) of the step dt (s); adds their work (J/m^3) to
+  /// `dissipated` (what they still store is subtracted when the energy is reported: element_stored_energy).
+  void element_stress(ElementState& s, const std::array<double, 6>& elastic_increment, const std::array<double, 6>& strain_increment,
+                      double dt, std::array<double, 6>& stress, double& dissipated) const noexcept {
+    if (dt <= 0.0) {
+      for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i)
+        for (std::size_t c = 0; c < 6; ++c) stress[c] += s[i][c];
+      return;
+    }
+    // Local copies: no store can alias a later load, so the six lanes of a branch stay in registers.
+    ElementState state = s;
+    const std::array<double, 6> increment = elastic_increment;
+    std::array<double, 6> old_sum{}, new_sum{};
+    for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
+      const double decay = decay_[i], gain = gain_[i];
+      for (std::size_t c = 0; c < 6; ++c) {
+        const double old = state[i][c];
+        old_sum[c] += old;
+        state[i][c] = old * decay + gain * increment[c];
+        new_sum[c] += state[i][c];
+      }
+    }
+    s = state;
+    double work = 0.0;
+    for (std::size_t c = 0; c < 6; ++c) {
+      stress[c] += new_sum[c];
+      work += 0.5 * (old_sum[c] + new_sum[c]) * strain_increment[c];
+    }
+    dissipated += work;
+  }
+  /// Energy in the element branches, sum_i (p_i^2 / (2K) + s_i : s_i / (4G)) / alpha_i, J/m^3 (bulk K, shear G in Pa).
+  double element_stored_energy(const ElementState& s, double bulk, double shear) const noexcept {
+    double e = 0.0;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
+      const auto& b = s[i];
+      const double p = (b[0] + b[1] + b[2]) / 3.0;
+      const double dev = (b[0] - p) * (b[0] - p) + (b[1] - p) * (b[1] - p) + (b[2] - p) * (b[2] - p) +
+                         2.0 * (b[3] * b[3] + b[4] * b[4] + b[5] * b[5]);
+      e += (0.5 * p * p / bulk + 0.25 * dev / shear) * inverse_alpha_[i];
+    }
+    return e;
+  }
+
   constexpr double velocity_update(double v, double force, Inertia mass, double dt, double&) const noexcept {
     return undamped_velocity_update(v, force, mass, dt);
   }

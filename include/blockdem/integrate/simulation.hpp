@@ -27,6 +27,7 @@
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
 #include "blockdem/integrate/contact_group.hpp"
+#include "blockdem/kinematics/deformable.hpp"
 #include "blockdem/model/contact_detection.hpp"
 #include "blockdem/model/model.hpp"
 
@@ -46,6 +47,20 @@ struct EnergyReport {
 
 enum class TimestepCheck { checked, unchecked };
 
+/// What partial density scaling did (paper Sect. 3.2: only nodes and rigid blocks whose own limit is below the
+/// target are made heavier; dsf = m_scaled / m_real per node).
+struct DensityScaling {
+  double target_dt = 0;              // s, the timestep asked for (the one the simulation now runs with)
+  double dt_critical_unscaled = 0;   // s, critical timestep before scaling
+  double dt_critical = 0;            // s, critical timestep after scaling
+  double dt = 0;                     // s, the timestep set
+  double real_mass = 0;              // kg, free nodes and free rigid blocks before scaling
+  double added_mass = 0;             // kg
+  double mass_increase_percent = 0;  // 100 added / real
+  std::size_t scaled_nodes = 0, scaled_blocks = 0;
+  double max_density_scaling_factor = 1;
+};
+
 template <damping::DampingPolicy Damping, contact::ContactLaw... Laws>
 class Simulation {
   static_assert(sizeof...(Laws) >= 1, "Simulation needs at least one joint law");
@@ -60,6 +75,8 @@ class Simulation {
     settings_.validate();
     if (!properties_) throw InvalidArgument("simulation: a contact property function is required");
     resize_block_arrays();
+    mixed_ = !model.deformable.empty();
+    if (mixed_) deformable_.setup(model);
     std::pair<std::pair<std::size_t, std::size_t>, double> deepest;
     const auto candidates = model::detect_contacts(model.bodies, settings_, &deepest);
     if (deepest.second < -settings_.tolerance)
@@ -67,7 +84,7 @@ class Simulation {
                             model.bodies.name[deepest.first.second] + "' interpenetrate by " +
                             std::to_string(-deepest.second) + " m, more than the contact tolerance " +
                             std::to_string(settings_.tolerance) + " m");
-    assign_contacts(candidates, /*keep_history=*/false);
+    assign_all(candidates, /*keep_history=*/false);
     pending_increment_ = false;
     set_timestep(default_timestep());
   }
@@ -80,6 +97,8 @@ class Simulation {
     other.synchronize();
     resize_block_arrays();
     copy_groups(other, std::index_sequence_for<Laws...>{});
+    mixed_ = other.mixed_;
+    if (mixed_) deformable_.take_over(other.deformable_, *model_);
     time_ = other.time_;
     set_timestep(std::min(other.dt_, default_timestep()));
   }
@@ -100,7 +119,28 @@ class Simulation {
   /// times the damping policy's factor (eq. 11, eq. 20). Infinite if no free block has a contact.
   double critical_timestep() const {
     const auto& b = model_->bodies;
-    std::vector<double> k_translation(b.size(), 0.0), k_rotation(b.size(), 0.0);
+    std::vector<double> k_translation, k_rotation, k_node;
+    stiffnesses(k_translation, k_rotation, k_node);
+    double omega_max = 0;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      if (b.motion[i] != model::Motion::free) continue;
+      if ((b.fixity[i] & 7) != 7) omega_max = std::max(omega_max, std::sqrt(k_translation[i] / b.mass[i]));
+      if ((b.fixity[i] & model::Fixity::all_rotations) != model::Fixity::all_rotations)
+        omega_max = std::max(omega_max, std::sqrt(k_rotation[i] / b.principal_inertia[i].minCoeff()));
+    }
+    const auto& nd = model_->deformable.nodes;
+    for (std::size_t i = 0; i < k_node.size(); ++i)
+      if ((nd.fixity[i] & 7) != 7) omega_max = std::max(omega_max, std::sqrt(k_node[i] / nd.mass[i]));  // eq. 1-3
+    if (omega_max == 0) return std::numeric_limits<double>::infinity();
+    return 2.0 / omega_max * damping_.timestep_factor(omega_max);
+  }
+
+  /// Stiffness (N/m) on each rigid block (translation; rotation k r^2 in N m) and on each node: contacts, elements
+  /// (eq. 2) and trusses.
+  void stiffnesses(std::vector<double>& k_translation, std::vector<double>& k_rotation, std::vector<double>& k_node) const {
+    const auto& b = model_->bodies;
+    k_translation.assign(b.size(), 0.0);
+    k_rotation.assign(b.size(), 0.0);
     for_each_group([&](const auto& g) {
       using L = typename std::remove_cvref_t<decltype(g)>::LawType;
       for (std::size_t c = 0; c < g.contacts(); ++c) {
@@ -118,16 +158,88 @@ class Simulation {
         }
       }
     });
-    double omega_max = 0;
-    for (std::size_t i = 0; i < b.size(); ++i) {
-      if (b.motion[i] != model::Motion::free) continue;
-      if ((b.fixity[i] & 7) != 7) omega_max = std::max(omega_max, std::sqrt(k_translation[i] / b.mass[i]));
-      if ((b.fixity[i] & model::Fixity::all_rotations) != model::Fixity::all_rotations)
-        omega_max = std::max(omega_max, std::sqrt(k_rotation[i] / b.principal_inertia[i].minCoeff()));
-    }
-    if (omega_max == 0) return std::numeric_limits<double>::infinity();
-    return 2.0 / omega_max * damping_.timestep_factor(omega_max);
+    k_node.clear();
+    if (mixed_) deformable_.add_stiffness(*model_, k_node, k_translation, k_rotation);
   }
+
+  /// Partial density scaling to a target timestep (s, the timestep to run with: the safety factor times the
+  /// critical one): every free node and free rigid block whose own limit 2 safety f / sqrt(k / m) is below the target
+  /// gets just the mass (rigid blocks: mass and inertia, by one factor) that brings it to the target; the others keep
+  /// theirs. Weights stay those of the real masses. Sets the timestep to the target and reports what was added.
+  /// Call before stepping (the energy reference is taken at the first step). Throws InvalidArgument if the target is
+  /// not positive and finite.
+  DensityScaling scale_density_to(double target_dt, double safety_factor = default_safety_factor) {
+    if (!(target_dt > 0) || !std::isfinite(target_dt))
+      throw InvalidArgument("density scaling: the target timestep must be > 0 s and finite, got " + std::to_string(target_dt));
+    if (!(safety_factor > 0 && safety_factor <= 1))
+      throw InvalidArgument("density scaling: the safety factor must be in (0, 1], got " + std::to_string(safety_factor));
+    auto& b = model_->bodies;
+    auto& nd = model_->deformable.nodes;
+    if (!mixed_) {  // the weight correction of scaled rigid blocks runs in the mixed path
+      mixed_ = true;
+      deformable_.setup(*model_);
+    }
+    DensityScaling r;
+    r.target_dt = target_dt;
+    r.dt_critical_unscaled = critical_timestep();
+    std::vector<double> kt, kr, kn;
+    stiffnesses(kt, kr, kn);
+    // omega_t with safety 2 f(omega_t) / omega_t = target (f: eq. 11 or eq. 20), by bisection in log omega.
+    auto limit = [&](double omega) { return safety_factor * 2.0 / omega * damping_.timestep_factor(omega); };
+    double lo = 1e-12, hi = 1e15;
+    for (int it = 0; it < 200; ++it) {
+      const double mid = std::sqrt(lo * hi);
+      (limit(mid) > target_dt ? lo : hi) = mid;
+    }
+    const double omega2 = lo * lo;
+    const double margin = 1.0 + 1e-9;
+    for (std::size_t i = 0; i < kn.size(); ++i) {
+      if ((nd.fixity[i] & 7) == 7) continue;
+      const double required = kn[i] / omega2 * margin;
+      if (nd.mass[i] < required) {
+        nd.mass[i] = required;
+        deformable_.node_inverse_mass[i] = 1.0 / required;
+        ++r.scaled_nodes;
+      }
+      r.real_mass += nd.real_mass[i];
+      r.added_mass += nd.mass[i] - nd.real_mass[i];
+      r.max_density_scaling_factor = std::max(r.max_density_scaling_factor, nd.density_scaling_factor(i));
+    }
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      if (b.motion[i] != model::Motion::free || model_->deformable.is_deformable(i)) continue;
+      double factor = 1.0;
+      if ((b.fixity[i] & 7) != 7) factor = std::max(factor, kt[i] / (omega2 * b.mass[i]) * margin);
+      if ((b.fixity[i] & model::Fixity::all_rotations) != model::Fixity::all_rotations)
+        factor = std::max(factor, kr[i] / (omega2 * b.principal_inertia[i].minCoeff()) * margin);
+      if (factor > 1.0) {
+        b.mass[i] *= factor;
+        b.principal_inertia[i] *= factor;
+        inverse_mass_[i] = 1.0 / b.mass[i];
+        inverse_inertia_[i] = b.principal_inertia[i].cwiseInverse();
+        ++r.scaled_blocks;
+      }
+      r.real_mass += deformable_.rigid_real_mass[i];
+      r.added_mass += b.mass[i] - deformable_.rigid_real_mass[i];
+      r.max_density_scaling_factor = std::max(r.max_density_scaling_factor, b.mass[i] / deformable_.rigid_real_mass[i]);
+    }
+    r.mass_increase_percent = r.real_mass > 0 ? 100.0 * r.added_mass / r.real_mass : 0.0;
+    r.dt_critical = critical_timestep();
+    set_timestep(target_dt);
+    r.dt = dt_;
+    return r;
+  }
+
+  /// Density scaling factor m_scaled / m_real of every node (the VTK field `density_scaling_factor`).
+  std::vector<double> density_scaling_factors() const {
+    const auto& nd = model_->deformable.nodes;
+    std::vector<double> f(nd.size());
+    for (std::size_t i = 0; i < nd.size(); ++i) f[i] = nd.density_scaling_factor(i);
+    return f;
+  }
+
+  /// Whether the model has deformable blocks, trusses or scaled rigid blocks (the mixed step runs).
+  bool mixed() const { return mixed_; }
+  const kinematics::DeformableState<Damping, Laws...>& deformable_state() const { return deformable_; }
 
   /// Sets the timestep (s). Throws InvalidArgument if it exceeds the critical timestep, unless unchecked.
   void set_timestep(double dt, TimestepCheck check = TimestepCheck::checked) {
@@ -153,6 +265,7 @@ class Simulation {
   std::size_t contact_points() const {
     std::size_t n = 0;
     for_each_group([&](const auto& g) { n += g.size(); });
+    if (mixed_) n += deformable_.contact_points();
     return n;
   }
 
@@ -199,31 +312,38 @@ class Simulation {
         }
       }
     });
+    if (!mixed_) return;
+    const auto& x = model_->deformable.nodes.position;
+    deformable_.for_each_group([&](const auto& g) {
+      for (std::size_t k = 0; k < g.size(); ++k) {
+        ContactView v;
+        v.block_a = g.node_block[k];
+        v.block_b = g.face_block[k];
+        v.position = x[g.node[k]];
+        v.force = g.force[k];
+        if constexpr (std::remove_cvref_t<decltype(g)>::FaceKinematics::deformable) {
+          const auto& t = g.triangle[k];
+          v.normal = -(x[t[1]] - x[t[0]]).cross(x[t[2]] - x[t[0]]).normalized();
+        } else {
+          v.normal = rotate(model_->bodies.rotation[g.face_block[k]], g.normal_local[k]);
+        }
+        v.area = g.area[k];
+        const auto& h = g.history[k];
+        v.gap = h.gap;
+        v.normal_stress = g.traction[k][0];
+        v.shear_stress = std::hypot(g.traction[k][1], g.traction[k][2]);
+        if constexpr (requires { h.damage; }) v.damage = h.damage;
+        else if constexpr (requires { h.failed; }) v.damage = h.failed ? 1.0 : 0.0;
+        f(v);
+      }
+    });
   }
 
   // ---- the step ----
 
   void step() {
-    const double increment_dt = pending_increment_ ? dt_ : 0.0;
-    for_each_group([&](auto& g) { contact_pass(g, increment_dt); });
-    // Joint histories are now at the current positions: the moment to detect contacts again if blocks have moved
-    // (relative to the base) by more than the redetection distance. Forces of the new set, then the block pass.
-    if (++steps_since_check_ >= settings_.redetection_check_interval) {
-      steps_since_check_ = 0;
-      if (moved_since_detection_) {
-        assign_contacts(model::detect_contacts(model_->bodies, settings_), /*keep_history=*/true);
-        for_each_group([&](auto& g) { contact_pass(g, 0.0); });
-      }
-    }
-    block_pass(increment_dt);
-    // The scheme conserves 1/2 m v(n-1/2).v(n+1/2) + U(x_n): the reference is its value at the first step.
-    if (energy_reference_pending_) {
-      energy0_ = energy_terms();
-      energy_reference_pending_ = false;
-    }
-    pending_increment_ = true;
-    time_ += dt_;
-    ++steps_;
+    if (mixed_) mixed_step();
+    else step_impl<false>();
   }
 
   /// Reverses the motion exactly (up to rounding): after n more steps the blocks are back where they were n steps
@@ -233,7 +353,14 @@ class Simulation {
     for_each_group([&](auto& g) { contact_pass(g, 0.0); });
     auto& b = model_->bodies;
     // v(n+1/2) = v(n-1/2) + dt F(x_n) / m, then negate: the leapfrog run backwards from x_n.
-    block_pass(0.0, /*move=*/false);
+    if (mixed_) {
+      mixed_forces(0.0);
+      block_pass<true>(0.0, /*move=*/false);
+      deformable_.node_pass(*model_, damping_, dt_, 0.0, false, settings_.redetection());
+      for (auto& v : model_->deformable.nodes.velocity) v = -v;
+    } else {
+      block_pass(0.0, /*move=*/false);
+    }
     for (std::size_t i = 0; i < b.size(); ++i) {
       b.velocity[i] = -b.velocity[i];
       b.angular_velocity[i] = -b.angular_velocity[i];
@@ -246,6 +373,7 @@ class Simulation {
   void synchronize() {
     if (!pending_increment_) return;
     for_each_group([&](auto& g) { contact_pass(g, dt_); });
+    if (mixed_) mixed_forces(dt_);
     pending_increment_ = false;
   }
 
@@ -266,9 +394,18 @@ class Simulation {
     const auto& b = model_->bodies;
     double unbalanced = 0, applied = 0;
     for (std::size_t i = 0; i < b.size(); ++i) {
-      if (b.motion[i] != model::Motion::free) continue;
+      if (b.motion[i] != model::Motion::free || model_->deformable.is_deformable(i)) continue;
       unbalanced += b.force[i].norm();
       applied += b.mass[i] * model_->gravity.norm();
+    }
+    const auto& nd = model_->deformable.nodes;
+    for (std::size_t i = 0; i < nd.size(); ++i) {
+      if ((nd.fixity[i] & 7) == 7) continue;
+      Vec3 f = nd.force[i];
+      for (int c = 0; c < 3; ++c)
+        if (nd.fixity[i] & (1u << c)) f[c] = 0;
+      unbalanced += f.norm();
+      applied += nd.real_mass[i] * model_->gravity.norm();
     }
     return applied > 0 ? unbalanced / applied : 0.0;
   }
@@ -287,8 +424,9 @@ class Simulation {
   /// contacts appear, CPs of blocks that moved apart are dropped.
   void redetect() {
     synchronize();
+    update_proxies();
     const auto candidates = model::detect_contacts(model_->bodies, settings_);
-    assign_contacts(candidates, /*keep_history=*/true);
+    assign_all(candidates, /*keep_history=*/true);
     pending_increment_ = false;
   }
 
@@ -644,6 +782,7 @@ class Simulation {
   }
 
   /// Gather, gravity, damped velocity update; then position and orientation update, for every block.
+  template <bool Mixed = false>
   void block_pass(double increment_dt, bool move = true) {
     auto& b = model_->bodies;
     const auto count = static_cast<std::ptrdiff_t>(b.size());
@@ -670,6 +809,10 @@ class Simulation {
           moment += g.moment[code];
         }
       });
+      if constexpr (Mixed) {  // node contacts, trusses, weight correction of scaled blocks
+        force += deformable_.extra_force[i];
+        moment += deformable_.extra_moment[i];
+      }
       const model::Motion motion = b.motion[i];
       if (motion == model::Motion::base) {
         b.force[i] = force;
@@ -778,11 +921,101 @@ class Simulation {
         }
       }
     });
+    if (mixed_) {
+      const auto d = deformable_.energy(*model_, damping_);
+      e.kinetic += d.kinetic;
+      e.elastic += d.elastic;
+      e.gravity_work += d.gravity_work;
+      e.viscous += d.viscous;
+      e.slip += d.slip;
+    }
     return e;
+  }
+
+  /// The step, specialised at compile time: the rigid-only instantiation is the rigid kernel exactly; the mixed
+  /// one adds the node contacts, elements and trusses, the extra forces on rigid blocks and the node pass. The mixed
+  /// step is kept out of line so that it does not change how the compiler inlines the rigid one.
+  [[gnu::noinline]] void mixed_step() { step_impl<true>(); }
+
+  template <bool Mixed>
+  void step_impl() {
+    const double increment_dt = pending_increment_ ? dt_ : 0.0;
+    for_each_group([&](auto& g) { contact_pass(g, increment_dt); });
+    if constexpr (Mixed) mixed_forces(increment_dt);
+    // Joint histories are now at the current positions: the moment to detect contacts again if blocks have moved
+    // (relative to the base) by more than the redetection distance. Forces of the new set, then the block pass.
+    if (++steps_since_check_ >= settings_.redetection_check_interval) {
+      steps_since_check_ = 0;
+      if (moved_since_detection_) {
+        if constexpr (Mixed) {
+          update_proxies();
+          assign_all(model::detect_contacts(model_->bodies, settings_), /*keep_history=*/true);
+        } else {
+          assign_contacts(model::detect_contacts(model_->bodies, settings_), /*keep_history=*/true);
+        }
+        for_each_group([&](auto& g) { contact_pass(g, 0.0); });
+        if constexpr (Mixed) mixed_forces(0.0);
+      }
+    }
+    block_pass<Mixed>(increment_dt);
+    if constexpr (Mixed) {
+      const bool nodes_moved = deformable_.node_pass(*model_, damping_, dt_, increment_dt, true, settings_.redetection());
+      moved_since_detection_ = moved_since_detection_ || nodes_moved;
+    }
+    // The scheme conserves 1/2 m v(n-1/2).v(n+1/2) + U(x_n): the reference is its value at the first step.
+    if (energy_reference_pending_) {
+      energy0_ = energy_terms();
+      energy_reference_pending_ = false;
+    }
+    pending_increment_ = true;
+    time_ += dt_;
+    ++steps_;
+  }
+
+  /// Node contacts, elements, trusses, then what they apply to rigid blocks.
+  void mixed_forces(double increment_dt) {
+    deformable_.contact_pass(*model_, damping_, increment_dt);
+    deformable_.element_pass(*model_, damping_, increment_dt);
+    deformable_.truss_pass(*model_);
+    deformable_.gather_rigid(*model_, increment_dt);
+  }
+
+  /// Rigid-rigid pairs to the rigid groups, pairs with a deformable block to the node groups.
+  void assign_all(const std::vector<model::ContactCandidate>& candidates, bool keep_history) {
+    if (!mixed_) {
+      assign_contacts(candidates, keep_history);
+      return;
+    }
+    std::vector<model::ContactCandidate> rigid, deformable;
+    for (const auto& c : candidates)
+      (model_->deformable.is_deformable(c.a) || model_->deformable.is_deformable(c.b) ? deformable : rigid).push_back(c);
+    assign_contacts(rigid, keep_history);
+    deformable_.assign(*model_, deformable, [&](int ta, int tb) { return choose_properties(ta, tb); }, settings_, keep_history);
+  }
+
+  Properties choose_properties(int ta, int tb) {
+    auto it = chosen_properties_.find({ta, tb});
+    if (it == chosen_properties_.end()) it = chosen_properties_.emplace(std::make_pair(ta, tb), properties_(ta, tb)).first;
+    return it->second;
+  }
+
+  /// Moves the rigid entry of each deformable block with the mean motion of its nodes (for the detection).
+  void update_proxies() {
+    if (!mixed_) return;
+    auto& b = model_->bodies;
+    const auto& x = model_->deformable.nodes.position;
+    for (const auto& blk : model_->deformable.blocks) {
+      Vec3 shift = Vec3::Zero();
+      for (std::uint32_t i = blk.first_node; i < blk.end_node; ++i) shift += x[i] - blk.reference_position[i - blk.first_node];
+      b.position[blk.body] = blk.reference_centroid + shift / static_cast<double>(blk.end_node - blk.first_node);
+    }
   }
 
   model::Model* model_;
   Damping damping_;
+  bool mixed_ = false;
+  kinematics::DeformableState<Damping, Laws...> deformable_;
+  std::map<std::pair<int, int>, Properties> chosen_properties_;
   PropertyFunction properties_;
   model::ContactSettings settings_;
   Groups groups_;

@@ -120,6 +120,54 @@ inline void write_points_vtu(const std::string& path, const std::vector<Vec3>& p
   if (!out) throw InvalidArgument("vtk: writing '" + path + "' failed");
 }
 
+/// Writes the tetrahedra of the deformable blocks (VTK_TETRA) with the point fields `density_scaling_factor`
+/// (dsf = m_scaled / m_real, paper Fig. 7), `displacement` (m, from `reference` if given) and `block`, and the cell
+/// fields `stress` (Pa, xx yy zz xy yz zx) and `mean_stress`.
+inline void write_tetrahedra_vtu(const std::string& path, const model::Model& model, const std::vector<Vec3>& reference = {}) {
+  const auto& nd = model.deformable.nodes;
+  const auto& te = model.deformable.tetrahedra;
+  auto out = detail::open_for_writing(path);
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "<UnstructuredGrid><Piece NumberOfPoints=\"" << nd.size() << "\" NumberOfCells=\"" << te.size() << "\">\n";
+  detail::write_points(out, nd.position);
+  std::vector<int> connectivity, offsets;
+  for (std::size_t t = 0; t < te.size(); ++t) {
+    for (auto n : te.node[t]) connectivity.push_back(static_cast<int>(n));
+    offsets.push_back(static_cast<int>(4 * (t + 1)));
+  }
+  out << "<Cells>\n";
+  detail::write_array(out, "connectivity", connectivity);
+  detail::write_array(out, "offsets", offsets);
+  out << "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+  for (std::size_t t = 0; t < te.size(); ++t) out << "10 ";  // VTK_TETRA
+  out << "\n</DataArray>\n</Cells>\n<PointData Scalars=\"density_scaling_factor\">\n";
+  std::vector<double> dsf(nd.size()), displacement;
+  std::vector<int> block(nd.size());
+  for (std::size_t i = 0; i < nd.size(); ++i) {
+    dsf[i] = nd.density_scaling_factor(i);
+    block[i] = static_cast<int>(nd.block[i]);
+  }
+  detail::write_array(out, "density_scaling_factor", dsf);
+  detail::write_array(out, "block", block);
+  if (reference.size() == nd.size()) {
+    for (std::size_t i = 0; i < nd.size(); ++i) {
+      const Vec3 u = nd.position[i] - reference[i];
+      displacement.insert(displacement.end(), {u.x(), u.y(), u.z()});
+    }
+    detail::write_array(out, "displacement", displacement, 3);
+  }
+  out << "</PointData>\n<CellData>\n";
+  std::vector<double> stress, mean;
+  for (const auto& s : te.stress) {
+    stress.insert(stress.end(), s.begin(), s.end());
+    mean.push_back((s[0] + s[1] + s[2]) / 3.0);
+  }
+  detail::write_array(out, "stress", stress, 6);
+  detail::write_array(out, "mean_stress", mean);
+  out << "</CellData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+  if (!out) throw InvalidArgument("vtk: writing '" + path + "' failed");
+}
+
 /// Writes the contact points of a simulation as vertices with normal_stress, shear_stress (Pa), gap (m), area (m^2),
 /// damage and normal.
 template <class Simulation>

@@ -1,0 +1,77 @@
+#pragma once
+// Contact points on deformable blocks (3DEC's sub-contacts): one CP per face node of the deformable (node) side that
+// lies on the overlap of the joint, with the node's tributary area, against the face of the other (face) side.
+// Face side Rigid: a material point of the rigid block, with the contact frame fixed in that block. Face side
+// Deformable: a point of one boundary triangle with fixed barycentric weights, the frame fixed to that triangle
+// (normal against the triangle's outward normal, t1 along its first edge). The normal n points from the node side
+// to the face side; the traction acts on the face side, its opposite on the node.
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "blockdem/contact/concepts.hpp"
+#include "blockdem/core/types.hpp"
+#include "blockdem/damping/concepts.hpp"
+#include "blockdem/kinematics/concepts.hpp"
+
+namespace blockdem::kinematics {
+
+template <contact::ContactLaw Law, damping::DampingPolicy Damping, Kinematics FaceSide>
+struct NodeContactGroup {
+  using LawType = Law;
+  using FaceKinematics = FaceSide;
+  using Parameters = typename Law::Parameters;
+  using History = typename Law::History;
+  using SpringState = std::array<typename Damping::ContactState, 3>;
+  using Traction = std::array<double, 3>;
+
+  std::vector<Parameters> properties;
+
+  // Per contact point.
+  std::vector<std::uint32_t> node;         // node side: the node
+  std::vector<std::uint32_t> node_block;   // its block
+  std::vector<std::uint32_t> face_block;   // face side: the block
+  std::vector<std::uint16_t> property;
+  std::vector<double> area;                // m^2, the node's tributary area on the overlap
+  // Face side Rigid: point, normal and t1 in the block's body frame (from its centroid).
+  std::vector<Vec3> point_local, normal_local, tangent_local;
+  // Face side Deformable: the triangle's nodes and the barycentric weights of the point.
+  std::vector<std::array<std::uint32_t, 3>> triangle;
+  std::vector<std::array<double, 3>> weight;
+  std::vector<History> history;
+  std::vector<SpringState> spring_state;
+  std::vector<Traction> traction;          // Pa: normal (compression +), t1, t2
+  std::vector<Vec3> force;                 // N, world, on the face side (the node gets the opposite)
+  std::vector<Vec3> moment;                // N m, on a rigid face side about its centroid
+  std::vector<double> slip_dissipation;    // J
+  std::vector<double> viscous_dissipation; // J
+
+  std::size_t size() const { return area.size(); }
+
+  void add(std::uint32_t n, std::uint32_t nb, std::uint32_t fb, std::uint16_t p, double a, const History& h,
+           const SpringState& s, double slip, double viscous) {
+    node.push_back(n);
+    node_block.push_back(nb);
+    face_block.push_back(fb);
+    property.push_back(p);
+    area.push_back(a);
+    history.push_back(h);
+    spring_state.push_back(s);
+    traction.push_back({0, 0, 0});
+    force.push_back(Vec3::Zero());
+    moment.push_back(Vec3::Zero());
+    slip_dissipation.push_back(slip);
+    viscous_dissipation.push_back(viscous);
+    if constexpr (FaceSide::deformable) {
+      triangle.push_back({0, 0, 0});
+      weight.push_back({0, 0, 0});
+    } else {
+      point_local.push_back(Vec3::Zero());
+      normal_local.push_back(Vec3::Zero());
+      tangent_local.push_back(Vec3::Zero());
+    }
+  }
+};
+
+}  // namespace blockdem::kinematics
