@@ -498,3 +498,33 @@ TEST_CASE("softening: a joint that broke and separated does not heal when it clo
   sim.visit_contacts([&](const auto& c) { smallest_damage = std::min(smallest_damage, c.damage); });
   CHECK(smallest_damage == 1.0);
 }
+
+TEST_CASE("softening: the inline elastic step equals the full step wherever it is taken") {
+  // Reference: update_inelastic, the whole step in every regime (validated by the tests above). Random paths through
+  // every regime; at each step both are applied to copies of the history and must agree bit for bit.
+  const Parameters p = table1();
+  SplitMix64 random(7);
+  long long compared = 0, fast = 0;
+  for (int path = 0; path < 500; ++path) {
+    ElastoSoftening::History h{};
+    const double scale = 2e-5 * (1 + 10 * random.uniform());
+    for (int step = 0; step < 200; ++step) {
+      const double dn = scale * random.uniform_symmetric();
+      const contact::Shear ds{scale * random.uniform_symmetric(), scale * random.uniform_symmetric()};
+      ElastoSoftening::History a = h, b = h;
+      const auto ra = ElastoSoftening::update(p, a, dn, ds);
+      const auto rb = ElastoSoftening::update_inelastic(p, b, dn, ds);
+      const bool same = ra.normal_stress == rb.normal_stress && ra.shear_stress == rb.shear_stress &&
+                        ra.dissipated == rb.dissipated && a.gap == b.gap && a.shear == b.shear && a.damage == b.damage &&
+                        a.tension_secant == b.tension_secant && a.compression_secant == b.compression_secant &&
+                        a.max_closure == b.max_closure && a.failed == b.failed && a.inelastic == b.inelastic;
+      CHECK(same);
+      ++compared;
+      fast += b.inelastic == 0;
+      h = b;
+    }
+  }
+  MESSAGE(compared << " steps compared, " << fast << " elastic");
+  CHECK(fast > compared / 10);
+  CHECK(fast < compared);
+}

@@ -258,7 +258,33 @@ struct ElastoSoftening {
     std::uint8_t inelastic = 0;      // the last step cracked, crushed or slipped
   };
 
-  static Response update(const Parameters& p, History& h, double du_normal, Shear du_shear) noexcept {
+  /// The step: inline while it stays elastic (the common case, a few comparisons); the cracking, crushing and
+  /// slipping paths out of line (`update_inelastic`), so that the fused contact loop keeps the law inline.
+  [[gnu::always_inline]] static Response update(const Parameters& p, History& h, double du_normal, Shear du_shear) noexcept {
+    const double gap = h.gap + du_normal;
+    const double intact = 1.0 - h.damage;
+    const double kn = p.normal_stiffness;
+    double sigma;  // compression positive
+    if (gap > 0) {
+      sigma = -kn * h.tension_secant * gap;
+      if (-sigma > p.residual_tensile_strength + p.tensile_drop * intact) return update_inelastic(p, h, du_normal, du_shear);
+    } else {
+      if (-gap > std::max(h.max_closure, p.elastic_limit_closure)) return update_inelastic(p, h, du_normal, du_shear);
+      sigma = -kn * h.compression_secant * gap;
+    }
+    const double limit2 = shear_limit_squared(p, sigma, intact, cap_strength(p, h));
+    const Shear tau{h.shear[0] - p.shear_stiffness * du_shear[0], h.shear[1] - p.shear_stiffness * du_shear[1]};
+    const double old2 = h.shear[0] * h.shear[0] + h.shear[1] * h.shear[1];
+    if (old2 > limit2 * (1.0 + 1e-12) || tau[0] * tau[0] + tau[1] * tau[1] > limit2)
+      return update_inelastic(p, h, du_normal, du_shear);
+    h.gap = gap;
+    h.shear = tau;
+    h.inelastic = 0;
+    return {sigma, tau, 0.0};
+  }
+
+  /// The whole step, any regime (the elastic one included).
+  [[gnu::noinline]] static Response update_inelastic(const Parameters& p, History& h, double du_normal, Shear du_shear) noexcept {
     const double gap = h.gap + du_normal;
     h.gap = gap;
     const double intact0 = 1.0 - h.damage;  // 1 - d
