@@ -16,6 +16,26 @@
 
 namespace blockdem {
 
+/// The energy of one CP (J), added to the three totals: the law's stored energy and, for policies with springs of
+/// their own (Maxwell), what the branches still store, which the loop had counted as work done on them (dissipated):
+/// it moves from viscous to elastic. `slip` and `viscous` are the CP's accumulated dissipation.
+template <contact::ContactLaw Law, damping::DampingPolicy Damping>
+void add_contact_point_energy(const Damping& damping, const typename Law::Parameters& p, const typename Law::History& h,
+                              const std::array<typename Damping::ContactState, 3>& spring, double area, double slip,
+                              double viscous, double& elastic_total, double& slip_total, double& viscous_total) {
+  double stored = Law::stored_energy(p, h);
+  if constexpr (requires { damping.stored_energy(spring[0], 1.0); }) {
+    const double branches = damping.stored_energy(spring[0], Law::normal_stiffness(p)) +
+                            damping.stored_energy(spring[1], Law::shear_stiffness(p)) +
+                            damping.stored_energy(spring[2], Law::shear_stiffness(p));
+    stored += branches;
+    viscous_total -= area * branches;
+  }
+  elastic_total += area * stored;
+  slip_total += slip;
+  viscous_total += viscous;
+}
+
 template <contact::ContactLaw Law, damping::DampingPolicy Damping>
 struct ContactGroup {
   using Parameters = typename Law::Parameters;

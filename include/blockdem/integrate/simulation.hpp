@@ -905,20 +905,9 @@ class Simulation {
       using L = typename std::remove_cvref_t<decltype(g)>::LawType;
       for (std::size_t c = 0; c < g.contacts(); ++c) {
         const auto& p = g.properties[g.property[c]];
-        for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k) {
-          double stored = L::stored_energy(p, g.history[k]);
-          if constexpr (requires { damping_.stored_energy(g.spring_state[k][0], 1.0); }) {
-            // The loop accumulated the work done on the damping springs; what they still store is not dissipated.
-            const double branches = damping_.stored_energy(g.spring_state[k][0], L::normal_stiffness(p)) +
-                                    damping_.stored_energy(g.spring_state[k][1], L::shear_stiffness(p)) +
-                                    damping_.stored_energy(g.spring_state[k][2], L::shear_stiffness(p));
-            stored += branches;
-            e.viscous -= g.area[k] * branches;
-          }
-          e.elastic += g.area[k] * stored;
-          e.slip += g.slip_dissipation[k];
-          e.viscous += g.viscous_dissipation[k];
-        }
+        for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k)
+          add_contact_point_energy<L>(damping_, p, g.history[k], g.spring_state[k], g.area[k], g.slip_dissipation[k],
+                                      g.viscous_dissipation[k], e.elastic, e.slip, e.viscous);
       }
     });
     if (mixed_) {

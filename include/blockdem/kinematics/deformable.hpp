@@ -27,6 +27,7 @@
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
+#include "blockdem/integrate/contact_group.hpp"
 #include "blockdem/kinematics/node_contact_group.hpp"
 #include "blockdem/model/contact_detection.hpp"
 #include "blockdem/model/model.hpp"
@@ -400,20 +401,9 @@ class DeformableState {
     }
     for_each_group([&](const auto& g) {
       using L = typename std::remove_cvref_t<decltype(g)>::LawType;
-      for (std::size_t k = 0; k < g.size(); ++k) {
-        const auto& p = g.properties[g.property[k]];
-        double stored = L::stored_energy(p, g.history[k]);
-        if constexpr (requires { damping.stored_energy(g.spring_state[k][0], 1.0); }) {
-          const double branches = damping.stored_energy(g.spring_state[k][0], L::normal_stiffness(p)) +
-                                  damping.stored_energy(g.spring_state[k][1], L::shear_stiffness(p)) +
-                                  damping.stored_energy(g.spring_state[k][2], L::shear_stiffness(p));
-          stored += branches;
-          e.viscous -= g.area[k] * branches;
-        }
-        e.elastic += g.area[k] * stored;
-        e.slip += g.slip_dissipation[k];
-        e.viscous += g.viscous_dissipation[k];
-      }
+      for (std::size_t k = 0; k < g.size(); ++k)
+        add_contact_point_energy<L>(damping, g.properties[g.property[k]], g.history[k], g.spring_state[k], g.area[k],
+                                    g.slip_dissipation[k], g.viscous_dissipation[k], e.elastic, e.slip, e.viscous);
     });
     for (std::size_t t = 0; t < m.deformable.trusses.size(); ++t) {
       const auto& tr = m.deformable.trusses[t];
