@@ -34,11 +34,7 @@ int main(int argc, char** argv) {
   app.add_flag("--find-collapse", find_collapse, "find the collapse multiplier lambda by bisection to 0.005");
   app.add_flag("--json", json, "print a JSON object");
   app.add_option("--vtk", o.vtk_prefix, "write PREFIX_blocks.vtu and PREFIX_contacts.vtu (final state) for ParaView");
-  app.add_flag("--deformable", o.deformable, "mesh the voussoirs into constant-strain tetrahedra");
-  app.add_option("--max-edge", o.max_edge, "maximum tetrahedron edge, m")->capture_default_str();
-  app.add_option("--young", o.young, "Young's modulus of deformable voussoirs, Pa")->capture_default_str();
-  app.add_option("--poisson", o.poisson, "Poisson's ratio of deformable voussoirs, (-1, 0.5)")->capture_default_str();
-  app.add_option("--target-dt", o.target_dt, "partial density scaling to this timestep, s (0: none)")->capture_default_str();
+  programs::add_deformable_options(app, o, "the voussoirs");
   if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
   try {
     o.validate();

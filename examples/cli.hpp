@@ -2,8 +2,11 @@
 // What the blockdem programs share: command-line parsing with exit status 0 for --help and 2 for bad input.
 
 #include <optional>
+#include <string>
 
 #include <CLI/CLI.hpp>
+
+#include "blockdem/analysis/deformable_options.hpp"
 
 namespace blockdem::programs {
 
@@ -23,6 +26,16 @@ inline std::optional<int> parse_command_line(CLI::App& app, int argc, char** arg
     return exit_bad_input;
   }
   return std::nullopt;
+}
+
+/// The flags of a program whose blocks can be deformable: --deformable, --max-edge, --young, --poisson, --target-dt.
+/// `what` names the blocks in the help ("the voussoirs", "the block").
+inline void add_deformable_options(CLI::App& app, analysis::DeformableOptions& o, const std::string& what) {
+  app.add_flag("--deformable", o.deformable, "mesh " + what + " into constant-strain tetrahedra");
+  app.add_option("--max-edge", o.max_edge, "maximum tetrahedron edge, m")->capture_default_str();
+  app.add_option("--young", o.young, "Young's modulus of " + what + " if deformable, Pa")->capture_default_str();
+  app.add_option("--poisson", o.poisson, "Poisson's ratio of " + what + " if deformable, (-1, 0.5)")->capture_default_str();
+  app.add_option("--target-dt", o.target_dt, "partial density scaling to this timestep, s (0: none)")->capture_default_str();
 }
 
 }  // namespace blockdem::programs

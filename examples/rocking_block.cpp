@@ -41,11 +41,7 @@ int main(int argc, char** argv) {
   app.add_flag("--in-g", in_g, "the history's accelerations are in g");
   app.add_option("--out", out_path, "write time_s,rotation_rad,base_acceleration_m_s2 to this CSV file");
   app.add_flag("--json", json, "print a JSON object");
-  app.add_flag("--deformable", o.deformable, "mesh the block into constant-strain tetrahedra");
-  app.add_option("--max-edge", o.max_edge, "maximum tetrahedron edge, m")->capture_default_str();
-  app.add_option("--young", o.young, "Young's modulus of the deformable block, Pa")->capture_default_str();
-  app.add_option("--poisson", o.poisson, "Poisson's ratio of the deformable block, (-1, 0.5)")->capture_default_str();
-  app.add_option("--target-dt", o.target_dt, "partial density scaling to this timestep, s (0: none)")->capture_default_str();
+  programs::add_deformable_options(app, o, "the block");
   if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
   try {
     io::TwoColumns record;

@@ -4,24 +4,16 @@
 
 #include <vector>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
-
 #include "blockdem/contact/mohr_coulomb.hpp"
 #include "blockdem/damping/maxwell_fit.hpp"
 #include "blockdem/geometry/generators.hpp"
 #include "blockdem/integrate/simulation.hpp"
+#include "../threads.hpp"
 
 using namespace blockdem;
 
 namespace {
-std::vector<Vec3> run_wall(int threads) {
-#ifdef _OPENMP
-  omp_set_num_threads(threads);
-#else
-  (void)threads;
-#endif
+std::vector<Vec3> run_wall() {
   model::Model m;
   for (const auto& b : geometry::running_bond_wall(12, 20, 0.24, 0.12, 0.055))
     m.add_block(b.shape, 1800, b.name, 0, b.support ? model::Motion::fixed : model::Motion::free);
@@ -38,14 +30,5 @@ std::vector<Vec3> run_wall(int threads) {
 }  // namespace
 
 TEST_CASE("threads: one and two threads give bitwise identical results") {
-  const auto one = run_wall(1);
-  const auto two = run_wall(2);
-  REQUIRE(one.size() == two.size());
-  std::size_t different = 0;
-  for (std::size_t i = 0; i < one.size(); ++i)
-    if (one[i] != two[i]) ++different;
-  CHECK(different == 0);
-#ifdef _OPENMP
-  omp_set_num_threads(omp_get_num_procs());
-#endif
+  CHECK(test::differences_between_one_and_two_threads(run_wall) == 0);
 }

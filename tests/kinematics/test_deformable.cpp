@@ -5,14 +5,12 @@
 
 #include "../approx.hpp"
 #include "../integrate/fixtures.hpp"
+#include "../threads.hpp"
 
 #include <cmath>
 #include <numeric>
 #include <string>
 
-#ifdef _OPENMP
-#include <omp.h>
-#endif
 
 #include "blockdem/contact/elastic.hpp"
 #include "blockdem/contact/mohr_coulomb.hpp"
@@ -308,12 +306,7 @@ TEST_CASE("deformable energy: kinetic + elastic (contacts, elements) + dissipate
 }
 
 TEST_CASE("deformable threads: one and two threads give bitwise identical results") {
-  auto run = [](int threads) {
-#ifdef _OPENMP
-    omp_set_num_threads(threads);
-#else
-    (void)threads;
-#endif
+  auto run = [] {
     model::Model m;
     m.gravity = Vec3(2.0, 0, -9.81);
     m.add_block(geometry::make_box(Vec3(-1, -1, -0.5), Vec3(1, 1, 0)), 2000, "base", 0, model::Motion::fixed);
@@ -329,16 +322,7 @@ TEST_CASE("deformable threads: one and two threads give bitwise identical result
     out.insert(out.end(), m.bodies.position.begin(), m.bodies.position.end());
     return out;
   };
-  const auto one = run(1);
-  const auto two = run(2);
-  REQUIRE(one.size() == two.size());
-  std::size_t different = 0;
-  for (std::size_t i = 0; i < one.size(); ++i)
-    if (one[i] != two[i]) ++different;
-  CHECK(different == 0);
-#ifdef _OPENMP
-  omp_set_num_threads(omp_get_num_procs());
-#endif
+  CHECK(test::differences_between_one_and_two_threads(run) == 0);
 }
 
 TEST_CASE("deformable truss: a block hanging from a tie stretches it by W L / (E A); the tie is in the timestep") {

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string>
 
+#include "blockdem/analysis/deformable_options.hpp"
 #include "blockdem/contact/mohr_coulomb.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/units.hpp"
@@ -18,7 +19,7 @@
 
 namespace blockdem::analysis {
 
-struct ArchOptions {
+struct ArchOptions : DeformableOptions {
   int voussoirs = 40;               // 2..2000
   double thickness_ratio = 0.15;    // t / R, in (0, 1)
   double radius = 1.0;              // m, to the centreline
@@ -32,13 +33,9 @@ struct ArchOptions {
   long long max_steps = 400000;
   std::string vtk_prefix;           // if set: <prefix>_blocks.vtu and <prefix>_contacts.vtu at the end
                                     // (and <prefix>_tetrahedra.vtu with the density scaling factor if deformable)
-  bool deformable = false;          // voussoirs meshed into constant-strain tetrahedra
-  double max_edge = 0.25;           // m, of the tetrahedra
-  double young = 5e9;               // Pa, of the voussoirs if deformable
-  double poisson = 0.2;
-  double target_dt = 0;             // s: partial density scaling to this timestep (0: none)
 
   void validate() const {
+    validate_deformable("arch");
     auto check = [](bool ok, const char* what) {
       if (!ok) throw InvalidArgument(std::string("arch: ") + what);
     };
@@ -51,10 +48,6 @@ struct ArchOptions {
     check(density > 0, "density must be > 0 kg/m^3");
     check(normal_stiffness > 0, "normal stiffness must be > 0 Pa/m");
     check(max_steps >= 100, "max steps must be >= 100");
-    check(max_edge > 0, "max edge must be > 0 m");
-    check(young > 0, "Young's modulus must be > 0 Pa");
-    check(poisson > -1 && poisson < 0.5, "Poisson's ratio must be in (-1, 0.5)");
-    check(target_dt >= 0, "target timestep must be >= 0 s (0: no density scaling)");
   }
 };
 

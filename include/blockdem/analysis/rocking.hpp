@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "blockdem/analysis/deformable_options.hpp"
 #include "blockdem/contact/mohr_coulomb.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/units.hpp"
@@ -18,7 +19,8 @@
 
 namespace blockdem::analysis {
 
-struct RockingOptions {
+struct RockingOptions : DeformableOptions {
+  RockingOptions() { young = 10e9; }  // Pa, of the block if deformable
   double width = 0.2;    // m, along the excitation (x)
   double depth = 0.5;    // m
   double height = 1.0;   // m
@@ -30,13 +32,9 @@ struct RockingOptions {
   std::function<double(double)> base_acceleration = [](double) { return 0.0; };
   double uplift_rotation = 1e-3;  // rad: a rotation beyond this is uplift (the elastic rocking of the joint is ~1e-4)
   double record_interval = 1e-3;  // s
-  bool deformable = false;        // the block meshed into constant-strain tetrahedra (the base stays rigid)
-  double max_edge = 0.25;         // m
-  double young = 10e9;            // Pa
-  double poisson = 0.2;
-  double target_dt = 0;           // s: partial density scaling to this timestep (0: none)
 
   void validate() const {
+    validate_deformable("rocking block");
     auto check = [](bool ok, const char* what) {
       if (!ok) throw InvalidArgument(std::string("rocking block: ") + what);
     };
@@ -46,10 +44,6 @@ struct RockingOptions {
     check(normal_stiffness > 0, "normal stiffness must be > 0 Pa/m");
     check(duration > 0 && duration <= 1e4, "duration must be in (0, 1e4] s");
     check(record_interval > 0, "record interval must be > 0 s");
-    check(max_edge > 0, "max edge must be > 0 m");
-    check(young > 0, "Young's modulus must be > 0 Pa");
-    check(poisson > -1 && poisson < 0.5, "Poisson's ratio must be in (-1, 0.5)");
-    check(target_dt >= 0, "target timestep must be >= 0 s (0: no density scaling)");
   }
 };
 

@@ -1,0 +1,36 @@
+#pragma once
+// Results must not depend on the number of OpenMP threads (forces are gathered in a fixed order, no atomics).
+
+#include <cstddef>
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace blockdem::test {
+
+/// Runs `run()` (returning a vector of values) on one thread and on two, and counts the entries that differ; the
+/// thread count is restored to the number of processors afterwards.
+template <class Run>
+std::size_t differences_between_one_and_two_threads(Run run) {
+  auto with = [&](int threads) {
+#ifdef _OPENMP
+    omp_set_num_threads(threads);
+#else
+    (void)threads;
+#endif
+    return run();
+  };
+  const auto one = with(1);
+  const auto two = with(2);
+#ifdef _OPENMP
+  omp_set_num_threads(omp_get_num_procs());
+#endif
+  if (one.size() != two.size()) return one.size() + two.size();
+  std::size_t different = 0;
+  for (std::size_t i = 0; i < one.size(); ++i)
+    if (one[i] != two[i]) ++different;
+  return different;
+}
+
+}  // namespace blockdem::test
