@@ -233,9 +233,10 @@ TEST_CASE("simulation: Maxwell branches act while the joint is closed and releas
   const auto& g = sim.group<contact::MohrCoulomb>();
   auto branch_stress = [&] {
     double sum = 0;
-    for (const auto& spring : g.spring_state)
-      for (const auto& direction : spring)
-        for (double b : direction) sum += std::abs(b);
+    for (std::size_t c = 0; c < g.contacts(); ++c)
+      for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k)
+        for (const auto& direction : g.spring_at(sim.damping(), c, k))
+          for (double b : direction) sum += std::abs(b);
     return sum;
   };
   double closed_max = 0;
@@ -252,4 +253,61 @@ TEST_CASE("simulation: Maxwell branches act while the joint is closed and releas
   }
   CHECK(saw_open);
   CHECK(closed_max > 0);
+}
+
+TEST_CASE("simulation: Maxwell branches in the contact-field form give the motion of every CP's own branches") {
+  // Reference: the same run with every CP keeping its own branch states (Maxwell::contact_field = false). A slender
+  // block settles on a dry joint, the contact carrying one field per branch; a redetection moves the field to the
+  // new contact; then the block is set rocking, an edge lifts, the open CPs release their branches and the contact
+  // goes over to per-CP states.
+  struct Result {
+    Vec3 position;
+    Quaternion orientation;
+    EnergyReport energy;
+    bool field_settled = false, field_redetected = false, field_rocking = true;
+  };
+  auto run = [](bool field_form) {
+    auto s = test::block_on_base(0.4, 0.4, 1.0);
+    s.model.gravity = Vec3(0, 0, -9.81);
+    damping::MaxwellFitOptions options;
+    auto policy = damping::to_policy<3>(damping::fit_maxwell(options));
+    policy.contact_field = field_form;
+    model::ContactSettings contacts;
+    contacts.tolerance = 0.01;
+    Simulation<damping::Maxwell<3>, contact::MohrCoulomb> sim(
+        s.model, policy, [](int, int) { return contact::MohrCoulomb::Parameters(1e9, 4e8, 0, 0, 0.6); }, contacts);
+    const auto& g = sim.group<contact::MohrCoulomb>();
+    Result r;
+    for (int i = 0; i < 4000; ++i) {
+      if (i == 1000) {
+        sim.synchronize();
+        // Turning about the centre of its base (no slip there): one side presses in, the other lifts.
+        const Vec3 w(0.05, 0.3, 0);
+        s.model.bodies.angular_velocity[s.block] = w;
+        s.model.bodies.velocity[s.block] = w.cross(s.model.bodies.position[s.block]);
+      }
+      sim.step();
+      if (i == 400) r.field_settled = g.field_form[0] != 0;
+      if (i == 500) sim.redetect();
+      if (i == 900) r.field_redetected = g.field_form[0] != 0;
+    }
+    r.field_rocking = g.field_form[0] != 0;
+    r.position = s.model.bodies.position[s.block];
+    r.orientation = s.model.bodies.orientation[s.block];
+    r.energy = sim.energy();
+    return r;
+  };
+  const auto field = run(true);
+  const auto point = run(false);
+  CHECK(field.field_settled);
+  CHECK(field.field_redetected);
+  CHECK_FALSE(field.field_rocking);  // the joint opened
+  CHECK_FALSE(point.field_settled);
+  const auto start = test::block_on_base(0.4, 0.4, 1.0).model.bodies.position[1];
+  CHECK((point.position - start).norm() > 1e-4);  // it rocked
+  CHECK((field.position - point.position).norm() == test::approx(0.0).scale((point.position - start).norm()).epsilon(1e-9));
+  CHECK(field.orientation.angularDistance(point.orientation) < 1e-10);
+  CHECK(field.energy.viscous > 0);
+  CHECK(field.energy.viscous == test::approx(point.energy.viscous).epsilon(1e-8));
+  CHECK(field.energy.elastic == test::approx(point.energy.elastic).epsilon(1e-8));
 }

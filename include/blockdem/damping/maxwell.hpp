@@ -230,6 +230,53 @@ struct Maxwell {
     return total;
   }
 
+  // The branches of a whole contact between two rigid blocks, in one state per contact instead of one per CP.
+  // A CP at plane coordinates (x1, x2) of a rigid contact has the elongation e = B(x1, x2) q, q the contact's
+  // generalised elongation (e0_n, e0_1, e0_2 at the origin; relative rotation r_n, r_1, r_2, in the contact frame):
+  //   e_n = e0_n + x2 r_1 - x1 r_2,   e_1 = e0_1 - x2 r_n,   e_2 = e0_2 + x1 r_n.
+  // The branch update is linear, so while every CP of the contact is active its branch stresses are exactly
+  // s_i = K B h_i (K = diag(k_n, k_s, k_s)) with one filtered elongation per branch, h_i <- h_i e^(-dt/tau_i) +
+  // alpha_i tau_i (1 - e^(-dt/tau_i)) q / dt: six numbers per branch and contact instead of three per branch and CP,
+  // and per CP only the evaluation of B at the sum over branches. When a CP releases its branches (it fails or
+  // opens), the contact goes over to the per-CP state (spring_stresses), from the field's values at its CPs.
+  using Generalised = std::array<double, 6>;                             // e0_n, e0_1, e0_2 (m); r_n, r_1, r_2 (rad)
+  using ContactField = std::array<Generalised, static_cast<std::size_t>(N)>;  // h_i, one per branch
+  /// Contacts between rigid blocks start in the field form; false keeps every CP's own branch state from the start
+  /// (the reference the field form is tested against).
+  bool contact_field = true;
+
+  /// Advances the field by the step dt (s) under the generalised elongation increment q; `before` and `after`
+  /// receive sum_i h_i at the start and at the end of the step (equal when dt <= 0: no time passes).
+  void advance_field(ContactField& f, const Generalised& q, double dt, Generalised& before, Generalised& after) const noexcept {
+    constexpr std::size_t n = static_cast<std::size_t>(N);
+    before = f[0];
+    for (std::size_t i = 1; i < n; ++i)
+      for (std::size_t j = 0; j < 6; ++j) before[j] += f[i][j];
+    if (dt <= 0.0) {
+      after = before;
+      return;
+    }
+    after = Generalised{};
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < 6; ++j) {
+        f[i][j] = f[i][j] * decay_[i] + gain_[i] * q[j];
+        after[j] += f[i][j];
+      }
+  }
+  /// K B(x1, x2) h: the stresses (Pa; normal, shear 1, shear 2) of a field value h at a CP.
+  static constexpr std::array<double, 3> field_stress(const Generalised& h, double kn, double ks, double x1, double x2) noexcept {
+    return {kn * (h[0] + x2 * h[4] - x1 * h[5]), ks * (h[1] - x2 * h[3]), ks * (h[2] + x1 * h[3])};
+  }
+  /// The per-CP branch stresses the field stands for at (x1, x2): s[direction][branch].
+  std::array<ContactState, 3> field_branch_stresses(const ContactField& f, double kn, double ks, double x1, double x2) const noexcept {
+    std::array<ContactState, 3> s{};
+    for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
+      const auto branch = field_stress(f[i], kn, ks, x1, x2);
+      for (std::size_t j = 0; j < 3; ++j) s[j][i] = branch[j];
+    }
+    return s;
+  }
+
   /// Energy in the branch springs, sum s_i^2 / (2 alpha_i k), J/m^2.
   double stored_energy(const ContactState& s, double stiffness) const noexcept {
     double e = 0.0;

@@ -36,6 +36,23 @@ void add_contact_point_energy(const Damping& damping, const typename Law::Parame
   viscous_total += viscous;
 }
 
+namespace detail {
+/// The per-contact branch state of policies with a contact-field form (damping::Maxwell::ContactField), else none.
+template <class Damping>
+struct ContactFieldOf {
+  using type = damping::NoState;
+  using sum = damping::NoState;
+  static constexpr bool present = false;
+};
+template <class Damping>
+  requires requires { typename Damping::ContactField; }
+struct ContactFieldOf<Damping> {
+  using type = typename Damping::ContactField;
+  using sum = typename Damping::Generalised;
+  static constexpr bool present = true;
+};
+}  // namespace detail
+
 template <contact::ContactLaw Law, damping::DampingPolicy Damping>
 struct ContactGroup {
   using Parameters = typename Law::Parameters;
@@ -53,6 +70,13 @@ struct ContactGroup {
   std::vector<std::uint32_t> first_point;  // the CPs of contact c are first_point[c] .. first_point[c + 1] - 1
   std::vector<Vec3> force;               // N, world frame, on B (A gets the opposite)
   std::vector<Vec3> moment;              // N m, world frame: [2c] on A about A's centroid, [2c + 1] on B about B's
+  // Policies with a contact-field form (Maxwell): while field_form[c] is 1, the branch state of contact c is
+  // field[c] and its CPs' spring_state is unused; once a CP has released its branches, the CPs' spring_state.
+  static constexpr bool has_field = detail::ContactFieldOf<Damping>::present;
+  using Field = typename detail::ContactFieldOf<Damping>::type;
+  using FieldSum = typename detail::ContactFieldOf<Damping>::sum;  // sum over the branches of a field
+  std::vector<Field> field;
+  std::vector<std::uint8_t> field_form;
 
   // Per contact point.
   std::vector<double> s1, s2;            // m, coordinates on the contact plane from the origin along t1, t2
@@ -74,7 +98,11 @@ struct ContactGroup {
 
   /// Opens contact c (call before adding its CPs).
   void begin_contact(std::uint32_t a, std::uint32_t b, std::uint16_t p, const Vec3& origin, const Vec3& normal,
-                     const Vec3& tangent) {
+                     const Vec3& tangent, bool in_field_form = false, const Field& f = Field{}) {
+    if constexpr (has_field) {
+      field.push_back(f);
+      field_form.push_back(in_field_form ? 1 : 0);
+    }
     body_a.push_back(a);
     body_b.push_back(b);
     property.push_back(p);
@@ -86,6 +114,26 @@ struct ContactGroup {
     force.push_back(Vec3::Zero());
     moment.push_back(Vec3::Zero());
     moment.push_back(Vec3::Zero());
+  }
+
+  /// The branch state of CP k of contact c, whichever form holds it.
+  SpringState spring_at(const Damping& damping, std::size_t c, std::size_t k) const {
+    if constexpr (has_field) {
+      if (field_form[c]) {
+        const auto& p = properties[property[c]];
+        return damping.field_branch_stresses(field[c], Law::normal_stiffness(p), Law::shear_stiffness(p), s1[k], s2[k]);
+      }
+    }
+    return spring_state[k];
+  }
+
+  /// Moves contact c from the field form to its CPs' own branch states (the field's values at the CPs).
+  void to_point_form(const Damping& damping, std::size_t c) {
+    if constexpr (has_field) {
+      if (!field_form[c]) return;
+      for (std::uint32_t k = first_point[c]; k < first_point[c + 1]; ++k) spring_state[k] = spring_at(damping, c, k);
+      field_form[c] = 0;
+    }
   }
 
   /// Adds a CP to the contact opened last.

@@ -580,9 +580,6 @@ class Simulation {
       total_area += c->area;
     }
     origin /= total_area;
-    const Mat3& ra = b.rotation[a];
-    g.begin_contact(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(bb), static_cast<std::uint16_t>(p),
-                    ra.transpose() * (origin - b.position[a]), ra.transpose() * n, ra.transpose() * t1);
     const Group<L>* o = nullptr;
     std::size_t oc = 0;
     if (keep_history) {
@@ -593,6 +590,25 @@ class Simulation {
       }
     }
     const ContactFrame old_frame = o ? frame(*o, oc) : ContactFrame{};
+    // A branch field (Maxwell) continues on the new contact, moved to its origin and frame; a contact whose CPs
+    // had their own branch states passes them on CP by CP (below).
+    bool in_field_form = false;
+    typename Group<L>::Field field{};
+    if constexpr (Group<L>::has_field) {
+      in_field_form = o ? o->field_form[oc] != 0 : damping_.contact_field;
+      if (o && in_field_form) {
+        const Vec3 shift = origin - old_frame.origin;
+        for (auto& h : field = o->field[oc]) {
+          const Vec3 e0 = h[0] * old_frame.n + h[1] * old_frame.t1 + h[2] * old_frame.t2;
+          const Vec3 r = h[3] * old_frame.n + h[4] * old_frame.t1 + h[5] * old_frame.t2;
+          const Vec3 e = e0 + r.cross(shift);  // the elongation of the same rigid relative motion at the new origin
+          h = {e.dot(n), e.dot(t1), e.dot(t2), r.dot(n), r.dot(t1), r.dot(t2)};
+        }
+      }
+    }
+    const Mat3& ra = b.rotation[a];
+    g.begin_contact(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(bb), static_cast<std::uint16_t>(p),
+                    ra.transpose() * (origin - b.position[a]), ra.transpose() * n, ra.transpose() * t1, in_field_form, field);
     for (auto c = first; c != last; ++c) {
       const Vec3 d = c->position - origin;
       typename L::History h{};
@@ -612,7 +628,7 @@ class Simulation {
           taken[k] = 1;
           matched = true;
           h = o->history[k];
-          spring = o->spring_state[k];
+          if (!in_field_form) spring = o->spring_state[k];
           slip = o->slip_dissipation[k];
           viscous = o->viscous_dissipation[k];
           carried_slip += slip;
@@ -665,6 +681,10 @@ class Simulation {
     to.area = from.area;
     to.history = from.history;
     to.spring_state.assign(from.size(), typename To::SpringState{});
+    if constexpr (To::has_field) {
+      to.field.assign(from.contacts(), typename To::Field{});
+      to.field_form.assign(from.contacts(), damping_.contact_field ? 1 : 0);
+    }
     to.traction = from.traction;
     to.slip_dissipation.assign(from.size(), 0.0);
     to.viscous_dissipation.assign(from.size(), 0.0);
@@ -702,6 +722,8 @@ class Simulation {
     auto* __restrict const traction = g.traction.data();
     double* __restrict const slip_dissipation = g.slip_dissipation.data();
     double* __restrict const viscous_dissipation = g.viscous_dissipation.data();
+    auto* __restrict const field = g.field.data();
+    std::uint8_t* __restrict const field_form = g.field_form.data();
     const auto count = static_cast<std::ptrdiff_t>(g.contacts());
     const Damping& damping = damping_;
     const double h = 0.5 * increment_dt;
@@ -737,27 +759,47 @@ class Simulation {
       const double ks = L::shear_stiffness(p);
       // Resultants in the contact frame: force (normal, t1, t2) and moment about the origin.
       double fn = 0, f1 = 0, f2 = 0, mn = 0, m1 = 0, m2 = 0;
-      const std::uint32_t end = first_point[c + 1];
-      for (std::uint32_t k = first_point[c]; k < end; ++k) {
+      const std::uint32_t begin = first_point[c], end = first_point[c + 1];
+      // Maxwell branches in the contact-field form (damping::Maxwell::ContactField): advanced once for the contact
+      // under its generalised elongation increment (-du0, -w), read at each CP.
+      [[maybe_unused]] bool in_field = false, released = false;
+      [[maybe_unused]] typename G::FieldSum before{}, after{};
+      if constexpr (G::has_field) {
+        in_field = field_form[c] != 0;
+        if (in_field) damping.advance_field(field[c], {-du0_n, -du0_1, -du0_2, -w_n, -w_1, -w_2}, increment_dt, before, after);
+      }
+      for (std::uint32_t k = begin; k < end; ++k) {
         const double x1 = plane_1[k], x2 = plane_2[k];
         const double du_n = du0_n + x2 * w_1 - x1 * w_2;
         const contact::Shear du_s{du0_1 - x2 * w_n, du0_2 + x1 * w_n};
         const contact::Response r = L::update(p, history[k], du_n, du_s);
         const bool active = L::damping_active(p, history[k]);
         double dissipated = 0.0;
-        auto& spring = spring_state[k];
         // Spring elongations in the sense of the stresses: closing the gap compresses, shear stress opposes du_s.
-        double sn = r.normal_stress, s1 = r.shear_stress[0], s2 = r.shear_stress[1];
-        if constexpr (requires { damping.spring_stresses(spring, kn, ks, std::array<double, 3>{}, increment_dt, active, dissipated); }) {
-          const auto viscous = damping.spring_stresses(spring, kn, ks, {-du_n, -du_s[0], -du_s[1]}, increment_dt, active, dissipated);
-          sn += viscous[0];
-          s1 += viscous[1];
-          s2 += viscous[2];
+        const std::array<double, 3> e{-du_n, -du_s[0], -du_s[1]};
+        std::array<double, 3> v{0.0, 0.0, 0.0};  // viscous stresses, Pa
+        if constexpr (G::has_field) {
+          if (in_field) {
+            // As spring_stresses: the work (old + new) / 2 . e, new = 0 for a CP that releases its branches. (With
+            // no time passing, e is 0 and an inactive CP's branches only stop acting: nothing is released.)
+            const double on = active ? 1.0 : 0.0;
+            released = released || !active;
+            const auto old_stress = Damping::field_stress(before, kn, ks, x1, x2);
+            const auto now = Damping::field_stress(after, kn, ks, x1, x2);
+            v = {on * now[0], on * now[1], on * now[2]};
+            dissipated += 0.5 * ((old_stress[0] + v[0]) * e[0] + (old_stress[1] + v[1]) * e[1] + (old_stress[2] + v[2]) * e[2]);
+          } else {
+            v = damping.spring_stresses(spring_state[k], kn, ks, e, increment_dt, active, dissipated);
+          }
+        } else if constexpr (requires { damping.spring_stresses(spring_state[k], kn, ks, e, increment_dt, active, dissipated); }) {
+          v = damping.spring_stresses(spring_state[k], kn, ks, e, increment_dt, active, dissipated);
         } else {
-          sn += damping.spring_stress(spring[0], kn, -du_n, increment_dt, active, dissipated);
-          s1 += damping.spring_stress(spring[1], ks, -du_s[0], increment_dt, active, dissipated);
-          s2 += damping.spring_stress(spring[2], ks, -du_s[1], increment_dt, active, dissipated);
+          auto& spring = spring_state[k];
+          v[0] = damping.spring_stress(spring[0], kn, e[0], increment_dt, active, dissipated);
+          v[1] = damping.spring_stress(spring[1], ks, e[1], increment_dt, active, dissipated);
+          v[2] = damping.spring_stress(spring[2], ks, e[2], increment_dt, active, dissipated);
         }
+        const double sn = r.normal_stress + v[0], s1 = r.shear_stress[0] + v[1], s2 = r.shear_stress[1] + v[2];
         traction[k] = {sn, s1, s2};
         const double area = area_of[k];
         const double an = area * sn, a1 = area * s1, a2 = area * s2;
@@ -772,6 +814,16 @@ class Simulation {
         if constexpr (!std::is_same_v<L, contact::Elastic>) slip_dissipation[k] += area * r.dissipated;
         if constexpr (!std::is_same_v<typename Damping::ContactState, damping::NoState>)
           viscous_dissipation[k] += area * dissipated;
+      }
+      if constexpr (G::has_field) {
+        if (released && increment_dt > 0.0) [[unlikely]] {
+          // A CP failed or opened: from now on every CP of the contact keeps its own branch states, from the
+          // field's values; those of the released CPs are zero.
+          for (std::uint32_t k = begin; k < end; ++k)
+            spring_state[k] = L::damping_active(p, history[k]) ? damping.field_branch_stresses(field[c], kn, ks, plane_1[k], plane_2[k])
+                                                               : typename G::SpringState{};
+          field_form[c] = 0;
+        }
       }
       const Vec3 f = fn * n + f1 * t1 + f2 * t2;
       const Vec3 m_origin = mn * n + m1 * t1 + m2 * t2;
@@ -906,7 +958,7 @@ class Simulation {
       for (std::size_t c = 0; c < g.contacts(); ++c) {
         const auto& p = g.properties[g.property[c]];
         for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k)
-          add_contact_point_energy<L>(damping_, p, g.history[k], g.spring_state[k], g.area[k], g.slip_dissipation[k],
+          add_contact_point_energy<L>(damping_, p, g.history[k], g.spring_at(damping_, c, k), g.area[k], g.slip_dissipation[k],
                                       g.viscous_dissipation[k], e.elastic, e.slip, e.viscous);
       }
     });
