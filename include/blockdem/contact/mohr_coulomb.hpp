@@ -59,29 +59,34 @@ struct MohrCoulomb {
 
   static Response update(const Parameters& p, History& h, double du_normal, Shear du_shear) noexcept {
     h.gap += du_normal;
-    const bool failed = h.failed != 0;
+    bool failed = h.failed != 0;
     const double tension = failed ? p.residual_tensile_strength : p.tensile_strength;
     double sigma = -p.normal_stiffness * h.gap;
     if (sigma < -tension) {  // tension cut-off
-      if (!failed && p.tensile_strength > 0) h.failed = 1;
-      sigma = -(h.failed ? p.residual_tensile_strength : tension);
+      if (!failed && p.tensile_strength > 0) failed = true;
+      sigma = -(failed ? p.residual_tensile_strength : tension);
     }
     h.normal = sigma;
     Shear tau{h.shear[0] - p.shear_stiffness * du_shear[0], h.shear[1] - p.shear_stiffness * du_shear[1]};
-    const bool now_failed = h.failed != 0;
-    const double limit = std::fmax(0.0, (now_failed ? p.residual_cohesion : p.cohesion) +
-                                            std::fmax(sigma, 0.0) * (now_failed ? p.tan_residual_friction : p.tan_friction));
+    // Comparisons, not std::fmax: GCC calls libm for fmax (its NaN rules), one call per CP-step in the hot loop.
+    const double compression = sigma > 0.0 ? sigma : 0.0;
+    const double strength = (failed ? p.residual_cohesion : p.cohesion) + compression * (failed ? p.tan_residual_friction : p.tan_friction);
+    const double limit = strength > 0.0 ? strength : 0.0;
     const double magnitude2 = tau[0] * tau[0] + tau[1] * tau[1];
     double dissipated = 0.0;
-    h.slipping = magnitude2 > limit * limit;  // no square root unless it slips
-    if (h.slipping) {  // slip: return to the Coulomb limit along the trial direction
+    const bool slipping = magnitude2 > limit * limit;  // no square root unless it slips
+    if (slipping) {  // slip: return to the Coulomb limit along the trial direction
       const double magnitude = std::sqrt(magnitude2);
       const double scale = limit / magnitude;
       dissipated = limit * (magnitude - limit) / p.shear_stiffness;  // limit times the plastic slip
       tau = {tau[0] * scale, tau[1] * scale};
-      if (p.cohesion > 0 || p.tensile_strength > 0) h.failed = 1;
+      if (p.cohesion > 0 || p.tensile_strength > 0) failed = true;
     }
     h.shear = tau;
+    // Both flags stored together, at the end: damping_active, right after the step, reads them as one word, which
+    // a lone byte store just before would stall (store forwarding).
+    h.failed = failed ? 1 : 0;
+    h.slipping = slipping ? 1 : 0;
     return {sigma, tau, dissipated};
   }
   static constexpr double normal_stiffness(const Parameters& p) noexcept { return p.normal_stiffness; }

@@ -267,6 +267,17 @@ struct Maxwell {
   static constexpr std::array<double, 3> field_stress(const Generalised& h, double kn, double ks, double x1, double x2) noexcept {
     return {kn * (h[0] + x2 * h[4] - x1 * h[5]), ks * (h[1] - x2 * h[3]), ks * (h[2] + x1 * h[3])};
   }
+  /// sum_CPs a B^T K B q: the generalised force (N, N m) of the stresses K B q over a contact whose CPs have the
+  /// area moments m = (sum a, sum a x1, sum a x2, sum a x1^2, sum a x2^2, sum a x1 x2). The work of the field over
+  /// a step with every CP active is (H_before + H_after) / 2 . contact_stiffness(q).
+  static constexpr Generalised contact_stiffness(const std::array<double, 6>& m, double kn, double ks, const Generalised& q) noexcept {
+    return {kn * (m[0] * q[0] + m[2] * q[4] - m[1] * q[5]),
+            ks * (m[0] * q[1] - m[2] * q[3]),
+            ks * (m[0] * q[2] + m[1] * q[3]),
+            ks * (m[1] * q[2] - m[2] * q[1] + (m[3] + m[4]) * q[3]),
+            kn * (m[2] * q[0] + m[4] * q[4] - m[5] * q[5]),
+            kn * (m[3] * q[5] - m[1] * q[0] - m[5] * q[4])};
+  }
   /// The per-CP branch stresses the field stands for at (x1, x2): s[direction][branch].
   std::array<ContactState, 3> field_branch_stresses(const ContactField& f, double kn, double ks, double x1, double x2) const noexcept {
     std::array<ContactState, 3> s{};

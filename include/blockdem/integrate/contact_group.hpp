@@ -77,6 +77,10 @@ struct ContactGroup {
   using FieldSum = typename detail::ContactFieldOf<Damping>::sum;  // sum over the branches of a field
   std::vector<Field> field;
   std::vector<std::uint8_t> field_form;
+  std::vector<double> field_viscous;  // J, the viscous work of the branches while in the field form, accumulated
+  // The CPs' area moments sum a, sum a x1, sum a x2, sum a x1^2, sum a x2^2, sum a x1 x2 (m^2, m^3, m^4): the
+  // contact's stiffness on its generalised elongation, from which the field's work per step follows.
+  std::vector<std::array<double, 6>> area_moments;
 
   // Per contact point.
   std::vector<double> s1, s2;            // m, coordinates on the contact plane from the origin along t1, t2
@@ -98,10 +102,12 @@ struct ContactGroup {
 
   /// Opens contact c (call before adding its CPs).
   void begin_contact(std::uint32_t a, std::uint32_t b, std::uint16_t p, const Vec3& origin, const Vec3& normal,
-                     const Vec3& tangent, bool in_field_form = false, const Field& f = Field{}) {
+                     const Vec3& tangent, bool in_field_form = false, const Field& f = Field{}, double viscous = 0.0) {
     if constexpr (has_field) {
       field.push_back(f);
       field_form.push_back(in_field_form ? 1 : 0);
+      field_viscous.push_back(viscous);
+      area_moments.push_back({});
     }
     body_a.push_back(a);
     body_b.push_back(b);
@@ -147,6 +153,15 @@ struct ContactGroup {
     slip_dissipation.push_back(slip);
     viscous_dissipation.push_back(viscous);
     ++first_point.back();
+    if constexpr (has_field) {
+      auto& m = area_moments.back();
+      m[0] += a;
+      m[1] += a * u;
+      m[2] += a * v;
+      m[3] += a * u * u;
+      m[4] += a * v * v;
+      m[5] += a * u * v;
+    }
   }
 
   /// Builds the gather lists for `blocks` blocks, in increasing contact order so that sums are reproducible.

@@ -521,7 +521,8 @@ class Simulation {
     double carried_slip = 0, carried_viscous = 0, old_slip = 0, old_viscous = 0;
     std::apply([&](const auto&... g) {
       ((old_slip += std::accumulate(g.slip_dissipation.begin(), g.slip_dissipation.end(), 0.0),
-        old_viscous += std::accumulate(g.viscous_dissipation.begin(), g.viscous_dissipation.end(), 0.0)), ...);
+        old_viscous += std::accumulate(g.viscous_dissipation.begin(), g.viscous_dissipation.end(), 0.0) +
+                       std::accumulate(g.field_viscous.begin(), g.field_viscous.end(), 0.0)), ...);
     }, old);
     std::map<std::pair<int, int>, Properties> chosen;
     for (std::size_t begin = 0, end = 0; begin < candidates.size(); begin = end) {
@@ -594,8 +595,13 @@ class Simulation {
     // had their own branch states passes them on CP by CP (below).
     bool in_field_form = false;
     typename Group<L>::Field field{};
+    double field_viscous = 0;
     if constexpr (Group<L>::has_field) {
       in_field_form = o ? o->field_form[oc] != 0 : damping_.contact_field;
+      if (o) {
+        field_viscous = o->field_viscous[oc];
+        carried_viscous += field_viscous;
+      }
       if (o && in_field_form) {
         const Vec3 shift = origin - old_frame.origin;
         for (auto& h : field = o->field[oc]) {
@@ -608,7 +614,8 @@ class Simulation {
     }
     const Mat3& ra = b.rotation[a];
     g.begin_contact(static_cast<std::uint32_t>(a), static_cast<std::uint32_t>(bb), static_cast<std::uint16_t>(p),
-                    ra.transpose() * (origin - b.position[a]), ra.transpose() * n, ra.transpose() * t1, in_field_form, field);
+                    ra.transpose() * (origin - b.position[a]), ra.transpose() * n, ra.transpose() * t1, in_field_form, field,
+                    field_viscous);
     for (auto c = first; c != last; ++c) {
       const Vec3 d = c->position - origin;
       typename L::History h{};
@@ -684,11 +691,25 @@ class Simulation {
     if constexpr (To::has_field) {
       to.field.assign(from.contacts(), typename To::Field{});
       to.field_form.assign(from.contacts(), damping_.contact_field ? 1 : 0);
+      to.field_viscous.assign(from.contacts(), 0.0);
+      to.area_moments.clear();
+      for (std::size_t c = 0; c < from.contacts(); ++c) {
+        auto& m = to.area_moments.emplace_back();
+        for (std::uint32_t k = from.first_point[c]; k < from.first_point[c + 1]; ++k) {
+          const double a = from.area[k], u = from.s1[k], v = from.s2[k];
+          m = {m[0] + a, m[1] + a * u, m[2] + a * v, m[3] + a * u * u, m[4] + a * v * v, m[5] + a * u * v};
+        }
+      }
     }
     to.traction = from.traction;
     to.slip_dissipation.assign(from.size(), 0.0);
     to.viscous_dissipation.assign(from.size(), 0.0);
     to.build_gather_lists(model_->bodies.size());
+  }
+
+  /// a n + b t1 + c t2, written out: Eigen left this sum as an out-of-line call in the contact loop.
+  [[gnu::always_inline]] static Vec3 from_frame(const Vec3& n, const Vec3& t1, const Vec3& t2, double a, double b, double c) {
+    return Vec3(a * n[0] + b * t1[0] + c * t2[0], a * n[1] + b * t1[1] + c * t2[1], a * n[2] + b * t1[2] + c * t2[2]);
   }
 
   /// The fused contact loop of one law. Per contact: the frame and the relative motion of the two blocks, reduced
@@ -723,6 +744,8 @@ class Simulation {
     double* __restrict const slip_dissipation = g.slip_dissipation.data();
     double* __restrict const viscous_dissipation = g.viscous_dissipation.data();
     auto* __restrict const field = g.field.data();
+    double* __restrict const field_viscous = g.field_viscous.data();
+    const auto* __restrict const area_moments = g.area_moments.data();
     std::uint8_t* __restrict const field_form = g.field_form.data();
     const auto count = static_cast<std::ptrdiff_t>(g.contacts());
     const Damping& damping = damping_;
@@ -761,12 +784,20 @@ class Simulation {
       double fn = 0, f1 = 0, f2 = 0, mn = 0, m1 = 0, m2 = 0;
       const std::uint32_t begin = first_point[c], end = first_point[c + 1];
       // Maxwell branches in the contact-field form (damping::Maxwell::ContactField): advanced once for the contact
-      // under its generalised elongation increment (-du0, -w), read at each CP.
+      // under its generalised elongation increment q = (-du0, -w), read at each CP; their work over the step,
+      // sum over CPs of a (old + new) / 2 . e, is (H_before + H_after) / 2 . sum a B^T K B q for the whole contact.
       [[maybe_unused]] bool in_field = false, released = false;
-      [[maybe_unused]] typename G::FieldSum before{}, after{};
+      [[maybe_unused]] typename G::FieldSum before{}, after{}, q{};
       if constexpr (G::has_field) {
         in_field = field_form[c] != 0;
-        if (in_field) damping.advance_field(field[c], {-du0_n, -du0_1, -du0_2, -w_n, -w_1, -w_2}, increment_dt, before, after);
+        if (in_field) {
+          q = {-du0_n, -du0_1, -du0_2, -w_n, -w_1, -w_2};
+          damping.advance_field(field[c], q, increment_dt, before, after);
+          const auto gq = Damping::contact_stiffness(area_moments[c], kn, ks, q);
+          double work = 0.0;
+          for (std::size_t j = 0; j < 6; ++j) work += (before[j] + after[j]) * gq[j];
+          field_viscous[c] += 0.5 * work;
+        }
       }
       for (std::uint32_t k = begin; k < end; ++k) {
         const double x1 = plane_1[k], x2 = plane_2[k];
@@ -780,14 +811,12 @@ class Simulation {
         std::array<double, 3> v{0.0, 0.0, 0.0};  // viscous stresses, Pa
         if constexpr (G::has_field) {
           if (in_field) {
-            // As spring_stresses: the work (old + new) / 2 . e, new = 0 for a CP that releases its branches. (With
-            // no time passing, e is 0 and an inactive CP's branches only stop acting: nothing is released.)
+            // A CP that releases its branches: new stress 0 (its share of the work is corrected below). (With no
+            // time passing, an inactive CP's branches only stop acting: nothing is released.)
             const double on = active ? 1.0 : 0.0;
             released = released || !active;
-            const auto old_stress = Damping::field_stress(before, kn, ks, x1, x2);
             const auto now = Damping::field_stress(after, kn, ks, x1, x2);
             v = {on * now[0], on * now[1], on * now[2]};
-            dissipated += 0.5 * ((old_stress[0] + v[0]) * e[0] + (old_stress[1] + v[1]) * e[1] + (old_stress[2] + v[2]) * e[2]);
           } else {
             v = damping.spring_stresses(spring_state[k], kn, ks, e, increment_dt, active, dissipated);
           }
@@ -813,20 +842,29 @@ class Simulation {
         // Only what can be non-zero is stored: a law or a policy that never dissipates costs no memory traffic here.
         if constexpr (!std::is_same_v<L, contact::Elastic>) slip_dissipation[k] += area * r.dissipated;
         if constexpr (!std::is_same_v<typename Damping::ContactState, damping::NoState>)
-          viscous_dissipation[k] += area * dissipated;
+          if (!in_field) viscous_dissipation[k] += area * dissipated;
       }
       if constexpr (G::has_field) {
         if (released && increment_dt > 0.0) [[unlikely]] {
           // A CP failed or opened: from now on every CP of the contact keeps its own branch states, from the
-          // field's values; those of the released CPs are zero.
-          for (std::uint32_t k = begin; k < end; ++k)
-            spring_state[k] = L::damping_active(p, history[k]) ? damping.field_branch_stresses(field[c], kn, ks, plane_1[k], plane_2[k])
-                                                               : typename G::SpringState{};
+          // field's values; those of the released CPs are zero, and the work counted for them above is their old
+          // stress only.
+          for (std::uint32_t k = begin; k < end; ++k) {
+            const double x1 = plane_1[k], x2 = plane_2[k];
+            if (L::damping_active(p, history[k])) {
+              spring_state[k] = damping.field_branch_stresses(field[c], kn, ks, x1, x2);
+              continue;
+            }
+            spring_state[k] = typename G::SpringState{};
+            const auto now = Damping::field_stress(after, kn, ks, x1, x2);
+            const auto e = Damping::field_stress(q, 1.0, 1.0, x1, x2);  // B q: the CP's elongations
+            field_viscous[c] -= 0.5 * area_of[k] * (now[0] * e[0] + now[1] * e[1] + now[2] * e[2]);
+          }
           field_form[c] = 0;
         }
       }
-      const Vec3 f = fn * n + f1 * t1 + f2 * t2;
-      const Vec3 m_origin = mn * n + m1 * t1 + m2 * t2;
+      const Vec3 f = from_frame(n, t1, t2, fn, f1, f2);
+      const Vec3 m_origin = from_frame(n, t1, t2, mn, m1, m2);
       contact_force[c] = f;
       contact_moment[2 * c] = -(arm_a.cross(f) + m_origin);
       contact_moment[2 * c + 1] = arm_b.cross(f) + m_origin;
@@ -957,6 +995,7 @@ class Simulation {
       using L = typename std::remove_cvref_t<decltype(g)>::LawType;
       for (std::size_t c = 0; c < g.contacts(); ++c) {
         const auto& p = g.properties[g.property[c]];
+        if constexpr (std::remove_cvref_t<decltype(g)>::has_field) e.viscous += g.field_viscous[c];
         for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k)
           add_contact_point_energy<L>(damping_, p, g.history[k], g.spring_at(damping_, c, k), g.area[k], g.slip_dissipation[k],
                                       g.viscous_dissipation[k], e.elastic, e.slip, e.viscous);
