@@ -265,6 +265,7 @@ TEST_CASE("simulation: Maxwell branches in the contact-field form give the motio
     Quaternion orientation;
     EnergyReport energy;
     bool field_settled = false, field_redetected = false, field_rocking = true;
+    std::vector<double> normal_stress;  // Pa, at each CP, settled (the output's tractions)
   };
   auto run = [](bool field_form) {
     auto s = test::block_on_base(0.4, 0.4, 1.0);
@@ -289,7 +290,11 @@ TEST_CASE("simulation: Maxwell branches in the contact-field form give the motio
       sim.step();
       if (i == 400) r.field_settled = g.field_form[0] != 0;
       if (i == 500) sim.redetect();
-      if (i == 900) r.field_redetected = g.field_form[0] != 0;
+      if (i == 900) {
+        r.field_redetected = g.field_form[0] != 0;
+        sim.synchronize();
+        sim.visit_contacts([&](const auto& v) { r.normal_stress.push_back(v.normal_stress); });
+      }
     }
     r.field_rocking = g.field_form[0] != 0;
     r.position = s.model.bodies.position[s.block];
@@ -303,6 +308,9 @@ TEST_CASE("simulation: Maxwell branches in the contact-field form give the motio
   CHECK(field.field_redetected);
   CHECK_FALSE(field.field_rocking);  // the joint opened
   CHECK_FALSE(point.field_settled);
+  REQUIRE(field.normal_stress.size() == point.normal_stress.size());
+  for (std::size_t k = 0; k < field.normal_stress.size(); ++k)
+    CHECK(field.normal_stress[k] == test::approx(point.normal_stress[k]).epsilon(1e-9));
   const auto start = test::block_on_base(0.4, 0.4, 1.0).model.bodies.position[1];
   CHECK((point.position - start).norm() > 1e-4);  // it rocked
   CHECK((field.position - point.position).norm() == test::approx(0.0).scale((point.position - start).norm()).epsilon(1e-9));
