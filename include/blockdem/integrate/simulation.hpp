@@ -898,16 +898,21 @@ class Simulation {
   /// caller puts back the others). Fixed degrees of freedom are selected, not branched around.
   void update_velocities(std::size_t begin, std::size_t end, double increment_dt) {
     auto& b = model_->bodies;
-    // The arrays as restrict parameters of a function: what lets the vectoriser do without run-time alias checks
-    // (GCC takes restrict on local pointers less far).
-    const auto update = [damping = damping_, dt = dt_, increment_dt, begin, end, gravity = model_->gravity](
-                            const std::uint8_t* __restrict fixity_of, const double* __restrict mass,
+    // The arrays as restrict parameters of a function: with restrict local pointers GCC 12 left this loop scalar
+    // (too many run-time alias checks).
+    // Fixity widened to the width of the doubles: one byte-sized array makes the vectoriser put as many blocks in
+    // a vector iteration as bytes fit in a register (32), which spilled most of the loop's state to the stack.
+    const std::size_t count = end - begin;
+    std::uint64_t fixity_wide[block_tile];
+    for (std::size_t k = 0; k < count; ++k) fixity_wide[k] = b.fixity[begin + k];
+    const auto update = [damping = damping_, dt = dt_, increment_dt, count, gravity = model_->gravity](
+                            const std::uint64_t* __restrict fixity_of, const double* __restrict mass,
                             const double* __restrict inverse_mass, const double* __restrict principal_inertia,
                             const double* __restrict inverse_principal_inertia, const double* __restrict orientation,
                             const double* __restrict force, const double* __restrict moment, double* __restrict velocity,
                             double* __restrict angular_velocity, double* __restrict kinetic, double* __restrict viscous,
                             double* __restrict gravity_work) {
-      for (std::size_t i = begin; i < end; ++i) {
+      for (std::size_t i = 0; i < count; ++i) {
         const std::uint64_t fixity = fixity_of[i];
         const double mass_i = mass[i], inverse_mass_i = inverse_mass[i];
         const double* inertia = principal_inertia + 3 * i;
@@ -972,10 +977,10 @@ class Simulation {
     };
     // The rotation matrix from the orientation (four numbers per block, loaded as whole vectors) instead of from
     // `rotation` (nine, whose stride the vectoriser cannot load as a group); rotation is rotation_matrix(orientation).
-    update(b.fixity.data(), b.mass.data(), inverse_mass_.data(), b.principal_inertia.data()->data(),
-           inverse_inertia_.data()->data(), b.orientation.data()->coeffs().data(), b.force.data()->data(),
-           b.moment.data()->data(), b.velocity.data()->data(), b.angular_velocity.data()->data(), kinetic_.data(),
-           viscous_.data(), gravity_work_.data());
+    update(fixity_wide, b.mass.data() + begin, inverse_mass_.data() + begin, b.principal_inertia[begin].data(),
+           inverse_inertia_[begin].data(), b.orientation[begin].coeffs().data(), b.force[begin].data(),
+           b.moment[begin].data(), b.velocity[begin].data(), b.angular_velocity[begin].data(), kinetic_.data() + begin,
+           viscous_.data() + begin, gravity_work_.data() + begin);
   }
 
   /// Positions and orientations of blocks [begin, end), one block per vector lane and all of them as if free (the
