@@ -13,16 +13,16 @@
 using namespace blockdem;
 
 namespace {
-std::vector<Vec3> run_wall() {
+std::vector<Vec3> run_wall(int courses, int units, int steps) {
   model::Model m;
-  for (const auto& b : geometry::running_bond_wall(12, 20, 0.24, 0.12, 0.055))
+  for (const auto& b : geometry::running_bond_wall(courses, units, 0.24, 0.12, 0.055))
     m.add_block(b.shape, 1800, b.name, 0, b.support ? model::Motion::fixed : model::Motion::free);
   m.gravity = Vec3(2.0, 0, -9.81);  // a horizontal push so that blocks slide and rock
   damping::MaxwellFitOptions o;
   Simulation<damping::Maxwell<3>, contact::MohrCoulomb> sim(m, damping::to_policy<3>(damping::fit_maxwell(o)), [](int, int) {
     return contact::MohrCoulomb::Parameters(1e9, 4e8, 0, 0, 0.5);
   });
-  for (int i = 0; i < 300; ++i) sim.step();
+  for (int i = 0; i < steps; ++i) sim.step();
   std::vector<Vec3> out = m.bodies.position;
   for (const auto& w : m.bodies.angular_velocity) out.push_back(w);
   return out;
@@ -30,5 +30,9 @@ std::vector<Vec3> run_wall() {
 }  // namespace
 
 TEST_CASE("threads: one and two threads give bitwise identical results") {
-  CHECK(test::differences_between_one_and_two_threads(run_wall) == 0);
+  CHECK(test::differences_between_one_and_two_threads([] { return run_wall(12, 20, 300); }) == 0);
+}
+
+TEST_CASE("threads: bitwise identical also when the block loops run in parallel (more than 1024 blocks)") {
+  CHECK(test::differences_between_one_and_two_threads([] { return run_wall(22, 50, 100); }) == 0);
 }

@@ -15,8 +15,10 @@ namespace blockdem {
   const double x2 = 0.25 * dt * dt * w.squaredNorm();  // half angle squared
   double c, s;                                          // cos x, sin x / x
   if (x2 < 1e-4) [[likely]] {
-    c = 1.0 - 0.5 * x2 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0)));
-    s = 1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0)));
+    // Horner in x^2 with the Taylor coefficients as constants: a division by 12.0 is not turned into a product
+    // (1/12 is not exact), and the seven divisions of the nested form were most of the orientation update.
+    c = 1.0 + x2 * (-1.0 / 2 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320))));
+    s = 1.0 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880))));
   } else {
     const double x = std::sqrt(x2);
     c = std::cos(x);

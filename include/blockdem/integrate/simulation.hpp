@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -871,23 +872,64 @@ class Simulation {
     }
   }
 
-  /// Gather, gravity, damped velocity update; then position and orientation update, for every block.
+  /// Blocks per tile of the block pass. Tiles, not threads, decide which blocks share a group of vector lanes, so
+  /// that results do not depend on the number of threads; and a tile's gathered resultants are still in L1 when its
+  /// update reads them.
+  static constexpr std::size_t block_tile = 64;
+
+  /// What the vector loops of a tile overwrite for blocks that are not free, put back afterwards.
+  struct KeptBlock {
+    std::size_t i;
+    Vec3 position, velocity, angular_velocity;
+    Quaternion orientation;
+    Mat3 rotation;
+    double kinetic, viscous, gravity_work;
+  };
+
+  /// Gather, gravity, damped velocity update; then position and orientation update, for every block, tile by tile.
   template <bool Mixed = false>
   void block_pass(double increment_dt, bool move = true) {
     auto& b = model_->bodies;
-    const auto count = static_cast<std::ptrdiff_t>(b.size());
-    const double dt = dt_;
-    const Vec3 gravity = model_->gravity;
-    const Vec3 base_velocity = model_->base_velocity(time_ + 0.5 * dt);
-    if (move) base_displacement_ += dt * base_velocity;
-    const Damping& damping = damping_;
+    const std::size_t n = b.size();
+    const auto tiles = static_cast<std::ptrdiff_t>((n + block_tile - 1) / block_tile);
+    const Vec3 base_velocity = model_->base_velocity(time_ + 0.5 * dt_);
+    if (move) base_displacement_ += dt_ * base_velocity;
     const Vec3 base_moved = base_displacement_ - detected_base_displacement_;
-    const double redetection = settings_.redetection();
     bool moved = false;
-#pragma omp parallel for schedule(static) if (count > 1024)
-    for (std::ptrdiff_t ii = 0; ii < count; ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      // Gather the contacts' resultants in a fixed order.
+#pragma omp parallel for schedule(static) if (n > 1024) reduction(|| : moved)
+    for (std::ptrdiff_t t = 0; t < tiles; ++t) {
+      const std::size_t begin = static_cast<std::size_t>(t) * block_tile, end = std::min(begin + block_tile, n);
+      gather_resultants<Mixed>(begin, end, increment_dt, base_velocity, move);
+      std::array<KeptBlock, block_tile> kept;
+      std::size_t kept_count = 0;
+      for (std::size_t i = begin; i < end; ++i)
+        if (b.motion[i] != model::Motion::free)
+          kept[kept_count++] = {i, b.position[i], b.velocity[i], b.angular_velocity[i], b.orientation[i], b.rotation[i],
+                                kinetic_[i], viscous_[i], gravity_work_[i]};
+      update_velocities(begin, end, increment_dt);
+      if (move) moved = update_positions(begin, end, base_moved) || moved;
+      for (std::size_t k = 0; k < kept_count; ++k) {
+        const KeptBlock& e = kept[k];
+        b.position[e.i] = e.position;
+        b.velocity[e.i] = e.velocity;
+        b.angular_velocity[e.i] = e.angular_velocity;
+        b.orientation[e.i] = e.orientation;
+        b.rotation[e.i] = e.rotation;
+        kinetic_[e.i] = e.kinetic;
+        viscous_[e.i] = e.viscous;
+        gravity_work_[e.i] = e.gravity_work;
+      }
+    }
+    moved_since_detection_ = moved_since_detection_ || moved;
+  }
+
+  /// The contacts' resultants on blocks [begin, end), summed in a fixed order, plus gravity on free blocks; base
+  /// blocks follow the base velocity.
+  template <bool Mixed>
+  void gather_resultants(std::size_t begin, std::size_t end, double increment_dt, const Vec3& base_velocity, bool move) {
+    auto& b = model_->bodies;
+    const Vec3 gravity = model_->gravity;
+    for (std::size_t i = begin; i < end; ++i) {
       Vec3 force = Vec3::Zero();
       Vec3 moment = Vec3::Zero();
       for_each_group([&](const auto& g) {
@@ -904,80 +946,220 @@ class Simulation {
         moment += deformable_.extra_moment[i];
       }
       const model::Motion motion = b.motion[i];
-      if (motion == model::Motion::base) {
-        b.force[i] = force;
-        b.moment[i] = moment;
-        if (!move) continue;
+      if (motion == model::Motion::free) force += b.mass[i] * gravity;
+      b.force[i] = force;
+      b.moment[i] = moment;
+      if (motion == model::Motion::base && move) {
         base_work_[i] -= force.dot(b.velocity[i]) * increment_dt;  // the move that led to x_n, against `force`
         b.velocity[i] = base_velocity;
         b.angular_velocity[i].setZero();
-        b.position[i] += dt * base_velocity;
-        continue;
+        b.position[i] += dt_ * base_velocity;
       }
-      if (motion == model::Motion::fixed) {
-        b.force[i] = force;
-        b.moment[i] = moment;
-        continue;
-      }
-      const damping::Inertia m{b.mass[i], inverse_mass_[i]};
-      force += m.value * gravity;
-      b.force[i] = force;
-      b.moment[i] = moment;
-      const std::uint8_t fixity = b.fixity[i];
-      const Vec3 v_old = b.velocity[i];
-      Vec3 v = v_old;
-      double dissipated = 0.0;
-      for (int c = 0; c < 3; ++c)
-        v[c] = (fixity & (1u << c)) ? 0.0 : damping.velocity_update(v_old[c], force[c], m, dt, dissipated);
-      // Rotation in the principal frame (Euler's equations). The gyroscopic term is taken at the mid-step angular
-      // velocity (implicit midpoint, two fixed-point passes: dt |w| is tiny), which keeps the scheme time reversible.
-      const Mat3& r = b.rotation[i];
-      const Vec3& inertia = b.principal_inertia[i];
-      const Vec3& inverse_inertia = inverse_inertia_[i];
-      const Vec3 w_old_body = rotate_back(r, b.angular_velocity[i]);
-      const Vec3 m_applied = rotate_back(r, moment);
-      Vec3 w_body = w_old_body;
-      double rotation_dissipated = 0.0;
-      for (int pass = 0; pass < 3; ++pass) {
-        const Vec3 w_mid = 0.5 * (w_old_body + w_body);
-        const Vec3 m_body = m_applied - w_mid.cross(inertia.cwiseProduct(w_mid));
-        rotation_dissipated = 0.0;
-        for (int c = 0; c < 3; ++c)
-          w_body[c] = damping.velocity_update(w_old_body[c], m_body[c], {inertia[c], inverse_inertia[c]}, dt, rotation_dissipated);
-      }
-      dissipated += rotation_dissipated;
-      Vec3 w = rotate(r, w_body);
-      if (fixity & model::Fixity::all_rotations) {
-        for (int c = 0; c < 3; ++c)
-          if (fixity & (8u << c)) w[c] = 0.0;
-        w_body = rotate_back(r, w);
-      }
-      b.velocity[i] = v;
-      b.angular_velocity[i] = w;
-      // Kinetic energy at step n from the two half-step velocities: conserved exactly by the undamped leapfrog.
-      kinetic_[i] = 0.5 * m.value * v_old.dot(v) + 0.5 * w_old_body.cwiseProduct(inertia).dot(w_body);
-      viscous_[i] += dissipated;
-      // Work of gravity over the move that brought the block to x_n, where the forces and energies are evaluated.
-      gravity_work_[i] += m.value * gravity.dot(v_old) * increment_dt;
     }
-    if (!move) return;
-    // Positions and orientations in a loop of their own: its short independent iterations overlap in the CPU,
-    // where the long dependency chain of a fused one (forces -> velocities -> orientation) did not.
-#pragma omp parallel for schedule(static) if (count > 1024) reduction(|| : moved)
-    for (std::ptrdiff_t ii = 0; ii < count; ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
+  }
+
+  static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Mat3) == 9 * sizeof(double) &&
+                sizeof(Quaternion) == 4 * sizeof(double), "the block update reads Eigen's coefficients in place");
+
+  /// a where the mask is all ones, b where it is zero. A ternary would let the compiler move the arithmetic of the
+  /// side not taken into a branch, which the vectoriser does not turn back into a selection (floating-point
+  /// operations may trap).
+  [[gnu::always_inline]] static double select(std::uint64_t mask, double a, double b) noexcept {
+    return std::bit_cast<double>((std::bit_cast<std::uint64_t>(a) & mask) | (std::bit_cast<std::uint64_t>(b) & ~mask));
+  }
+
+  /// rotation_matrix() of the unit quaternion (x, y, z, w) into the nine coefficients of a column-major Mat3.
+  [[gnu::always_inline]] static void rotation_coefficients(const double* q, double* r) noexcept {
+    const double x = q[0], y = q[1], z = q[2], w = q[3];
+    const double xx = 2 * x * x, yy = 2 * y * y, zz = 2 * z * z;
+    const double xy = 2 * x * y, xz = 2 * x * z, yz = 2 * y * z, wx = 2 * w * x, wy = 2 * w * y, wz = 2 * w * z;
+    r[0] = 1 - yy - zz;
+    r[1] = xy + wz;
+    r[2] = xz - wy;
+    r[3] = xy - wz;
+    r[4] = 1 - xx - zz;
+    r[5] = yz + wx;
+    r[6] = xz + wy;
+    r[7] = yz - wx;
+    r[8] = 1 - xx - yy;
+  }
+
+  /// Damped velocity update of blocks [begin, end), one block per vector lane and all of them as if free (the
+  /// caller puts back the others). Fixed degrees of freedom are selected, not branched around.
+  void update_velocities(std::size_t begin, std::size_t end, double increment_dt) {
+    auto& b = model_->bodies;
+    // The arrays as restrict parameters of a function: with restrict local pointers GCC 12 left this loop scalar
+    // (too many run-time alias checks).
+    // Fixity widened to the width of the doubles: one byte-sized array makes the vectoriser put as many blocks in
+    // a vector iteration as bytes fit in a register (32), which spilled most of the loop's state to the stack.
+    const std::size_t count = end - begin;
+    std::uint64_t fixity_wide[block_tile];
+    for (std::size_t k = 0; k < count; ++k) fixity_wide[k] = b.fixity[begin + k];
+    const auto update = [damping = damping_, dt = dt_, increment_dt, count, gravity = model_->gravity](
+                            const std::uint64_t* __restrict fixity_of, const double* __restrict mass,
+                            const double* __restrict inverse_mass, const double* __restrict principal_inertia,
+                            const double* __restrict inverse_principal_inertia, const double* __restrict orientation,
+                            const double* __restrict force, const double* __restrict moment, double* __restrict velocity,
+                            double* __restrict angular_velocity, double* __restrict kinetic, double* __restrict viscous,
+                            double* __restrict gravity_work) {
+      for (std::size_t i = 0; i < count; ++i) {
+        const std::uint64_t fixity = fixity_of[i];
+        const double mass_i = mass[i], inverse_mass_i = inverse_mass[i];
+        const double* inertia = principal_inertia + 3 * i;
+        const double* inverse_inertia = inverse_principal_inertia + 3 * i;
+        double r[9];  // r(j, k) at 3 k + j
+        rotation_coefficients(orientation + 4 * i, r);
+        double dissipated = 0.0;
+        double v_old[3], v[3], w_old[3], m_world[3];
+        for (int c = 0; c < 3; ++c) {
+          v_old[c] = velocity[3 * i + c];
+          w_old[c] = angular_velocity[3 * i + c];
+          m_world[c] = moment[3 * i + c];
+          double with_this = dissipated;
+          const double updated =
+              damping.velocity_update(v_old[c], force[3 * i + c], damping::Inertia{mass_i, inverse_mass_i}, dt, with_this);
+          const std::uint64_t fixed = 0 - ((fixity >> c) & 1u);
+          v[c] = select(fixed, 0.0, updated);
+          dissipated = select(fixed, dissipated, with_this);
+        }
+        // Rotation in the principal frame (Euler's equations). The gyroscopic term is taken at the mid-step angular
+        // velocity (implicit midpoint, fixed-point passes: dt |w| is tiny), which keeps the scheme time reversible.
+        double w_old_body[3], m_applied[3], w_body[3];
+        for (int k = 0; k < 3; ++k) {
+          w_old_body[k] = r[3 * k] * w_old[0] + r[3 * k + 1] * w_old[1] + r[3 * k + 2] * w_old[2];
+          m_applied[k] = r[3 * k] * m_world[0] + r[3 * k + 1] * m_world[1] + r[3 * k + 2] * m_world[2];
+          w_body[k] = w_old_body[k];
+        }
+        double rotation_dissipated = 0.0;
+        for (int pass = 0; pass < 3; ++pass) {
+          double w_mid[3], l[3];
+          for (int c = 0; c < 3; ++c) {
+            w_mid[c] = 0.5 * (w_old_body[c] + w_body[c]);
+            l[c] = inertia[c] * w_mid[c];  // angular momentum
+          }
+          const double m_body[3] = {m_applied[0] - (w_mid[1] * l[2] - w_mid[2] * l[1]),
+                                    m_applied[1] - (w_mid[2] * l[0] - w_mid[0] * l[2]),
+                                    m_applied[2] - (w_mid[0] * l[1] - w_mid[1] * l[0])};
+          rotation_dissipated = 0.0;
+          for (int c = 0; c < 3; ++c)
+            w_body[c] = damping.velocity_update(w_old_body[c], m_body[c], damping::Inertia{inertia[c], inverse_inertia[c]},
+                                                dt, rotation_dissipated);
+        }
+        dissipated += rotation_dissipated;
+        double w[3], w_back[3];
+        for (int j = 0; j < 3; ++j)
+          w[j] = select(0 - ((fixity >> (3 + j)) & 1u), 0.0, r[j] * w_body[0] + r[3 + j] * w_body[1] + r[6 + j] * w_body[2]);
+        for (int k = 0; k < 3; ++k) w_back[k] = r[3 * k] * w[0] + r[3 * k + 1] * w[1] + r[3 * k + 2] * w[2];
+        const std::uint64_t rotation_fixed = 0 - static_cast<std::uint64_t>((fixity & model::Fixity::all_rotations) != 0);
+        for (int c = 0; c < 3; ++c) {
+          w_body[c] = select(rotation_fixed, w_back[c], w_body[c]);
+          velocity[3 * i + c] = v[c];
+          angular_velocity[3 * i + c] = w[c];
+        }
+        // Kinetic energy at step n from the two half-step velocities: conserved exactly by the undamped leapfrog.
+        kinetic[i] = 0.5 * mass_i * (v_old[0] * v[0] + v_old[1] * v[1] + v_old[2] * v[2]) +
+                     0.5 * (w_old_body[0] * inertia[0] * w_body[0] + w_old_body[1] * inertia[1] * w_body[1] +
+                            w_old_body[2] * inertia[2] * w_body[2]);
+        viscous[i] += dissipated;
+        // Work of gravity over the move that brought the block to x_n, where the forces and energies are evaluated.
+        gravity_work[i] += mass_i * (gravity[0] * v_old[0] + gravity[1] * v_old[1] + gravity[2] * v_old[2]) * increment_dt;
+      }
+    };
+    // The rotation matrix from the orientation (four numbers per block, loaded as whole vectors) instead of from
+    // `rotation` (nine, whose stride the vectoriser cannot load as a group); rotation is rotation_matrix(orientation).
+    update(fixity_wide, b.mass.data() + begin, inverse_mass_.data() + begin, b.principal_inertia[begin].data(),
+           inverse_inertia_[begin].data(), b.orientation[begin].coeffs().data(), b.force[begin].data(),
+           b.moment[begin].data(), b.velocity[begin].data(), b.angular_velocity[begin].data(), kinetic_.data() + begin,
+           viscous_.data() + begin, gravity_work_.data() + begin);
+  }
+
+  /// Positions and orientations of blocks [begin, end), one block per vector lane and all of them as if free (the
+  /// caller puts back the others); whether a free block moved (relative to the base) by more than the redetection
+  /// distance since the last detection, rotation counting with the block's radius. Turns beyond the range of
+  /// turned()'s series, and blocks near the redetection distance, are finished one by one afterwards.
+  bool update_positions(std::size_t begin, std::size_t end, const Vec3& base_moved) {
+    auto& b = model_->bodies;
+    const double dt = dt_;
+    const double h = 0.5 * dt;
+    const double redetection = settings_.redetection();
+    const double shift[3] = {base_moved[0], base_moved[1], base_moved[2]};
+    // The turned quaternion before its normalisation, whose square root (with libm's errno check) would keep the
+    // loop from being vectorised; the half angle squared, to find turns beyond the series; the reach (|d|^2 + a^2)
+    // of the move since the last detection; the old orientation, for turns beyond the series.
+    alignas(64) double turned_x[block_tile], turned_y[block_tile], turned_z[block_tile], turned_w[block_tile];
+    alignas(64) double half_angle2[block_tile], scale[block_tile], reach[block_tile], old_orientation[4 * block_tile];
+    const std::size_t count = end - begin;
+    // Restrict parameters, as in update_velocities().
+    const auto turn = [&](const double* __restrict velocity, const double* __restrict angular_velocity,
+                          double* __restrict position, const double* __restrict orientation) {
+      for (std::size_t k = 0; k < count; ++k) {
+        for (int c = 0; c < 3; ++c) position[3 * k + c] += dt * velocity[3 * k + c];
+        // turned(), with cos x and sin x / x of the half angle x from their series.
+        const double wx = angular_velocity[3 * k], wy = angular_velocity[3 * k + 1], wz = angular_velocity[3 * k + 2];
+        const double x2 = 0.25 * dt * dt * (wx * wx + wy * wy + wz * wz);
+        const double cx = 1.0 + x2 * (-1.0 / 2 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320))));
+        const double sx = 1.0 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880))));
+        const double f = h * sx;
+        const double vx = f * wx, vy = f * wy, vz = f * wz;
+        const double qx = orientation[4 * k], qy = orientation[4 * k + 1], qz = orientation[4 * k + 2], qw = orientation[4 * k + 3];
+        turned_x[k] = cx * qx + qw * vx + (vy * qz - vz * qy);
+        turned_y[k] = cx * qy + qw * vy + (vz * qx - vx * qz);
+        turned_z[k] = cx * qz + qw * vz + (vx * qy - vy * qx);
+        turned_w[k] = cx * qw - (vx * qx + vy * qy + vz * qz);
+        half_angle2[k] = x2;
+      }
+    };
+    turn(b.velocity[begin].data(), b.angular_velocity[begin].data(), b.position[begin].data(),
+         b.orientation[begin].coeffs().data());
+    for (std::size_t k = 0; k < count; ++k)
+      scale[k] = 1.0 / std::sqrt(turned_w[k] * turned_w[k] + turned_x[k] * turned_x[k] + turned_y[k] * turned_y[k] +
+                                 turned_z[k] * turned_z[k]);
+    // The rotation matrices, column by column (r(j, m) in rotation_of[3 m + j]): nine numbers per block at a stride
+    // of nine are no group the vectoriser stores, so they are copied into `rotation` one by one below.
+    alignas(64) double rotation_of[9][block_tile];
+    const auto normalise = [&](double* __restrict orientation, const double* __restrict position,
+                               const double* __restrict detected_position, const double* __restrict detected_orientation,
+                               const double* __restrict radius) {
+      for (std::size_t k = 0; k < count; ++k) {
+        for (int c = 0; c < 4; ++c) old_orientation[4 * k + c] = orientation[4 * k + c];
+        const double s = scale[k];
+        const double q[4] = {s * turned_x[k], s * turned_y[k], s * turned_z[k], s * turned_w[k]};
+        for (int c = 0; c < 4; ++c) orientation[4 * k + c] = q[c];
+        double r[9];
+        rotation_coefficients(q, r);
+        for (int j = 0; j < 9; ++j) rotation_of[j][k] = r[j];
+        const double dx = position[3 * k] - detected_position[3 * k] - shift[0];
+        const double dy = position[3 * k + 1] - detected_position[3 * k + 1] - shift[1];
+        const double dz = position[3 * k + 2] - detected_position[3 * k + 2] - shift[2];
+        // Twice the vector part of q q0^-1 (small_angle_between()).
+        const double* q0 = detected_orientation + 4 * k;
+        const double ex = q0[3] * q[0] - q[3] * q0[0] - (q[1] * q0[2] - q[2] * q0[1]);
+        const double ey = q0[3] * q[1] - q[3] * q0[1] - (q[2] * q0[0] - q[0] * q0[2]);
+        const double ez = q0[3] * q[2] - q[3] * q0[2] - (q[0] * q0[1] - q[1] * q0[0]);
+        reach[k] = (dx * dx + dy * dy + dz * dz) + 4.0 * (ex * ex + ey * ey + ez * ez) * radius[k] * radius[k];
+      }
+    };
+    normalise(b.orientation[begin].coeffs().data(), b.position[begin].data(),
+              detected_position_[begin].data(), detected_orientation_[begin].coeffs().data(), radius_.data() + begin);
+    bool moved = false;
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::size_t i = begin + k;
+      for (int j = 0; j < 9; ++j) b.rotation[i].data()[j] = rotation_of[j][k];
       if (b.motion[i] != model::Motion::free) continue;
-      const Vec3& v = b.velocity[i];
-      const Vec3& w = b.angular_velocity[i];
-      b.position[i] += dt * v;
-      b.orientation[i] = turned(b.orientation[i], w, dt);
-      b.rotation[i] = rotation_matrix(b.orientation[i]);
-      // Moved (relative to the base) by more than the redetection distance since the last detection? Rotation
-      // counts with the block's radius.
-      const double angle = small_angle_between(b.orientation[i], detected_orientation_[i]);
-      moved = moved || (b.position[i] - detected_position_[i] - base_moved).norm() + angle * radius_[i] > redetection;
+      const bool large_turn = !(half_angle2[k] < 1e-4);
+      if (large_turn) {
+        b.orientation[i] = turned(Quaternion(old_orientation[4 * k + 3], old_orientation[4 * k], old_orientation[4 * k + 1],
+                                             old_orientation[4 * k + 2]),
+                                  b.angular_velocity[i], dt);
+        b.rotation[i] = rotation_matrix(b.orientation[i]);
+      }
+      // (|d| + a)^2 <= 2 (|d|^2 + a^2): most blocks are far below the redetection distance, without square roots.
+      if (large_turn || 2.0 * reach[k] > redetection * redetection) {
+        const double angle = small_angle_between(b.orientation[i], detected_orientation_[i]);
+        moved = moved || (b.position[i] - detected_position_[i] - base_moved).norm() + angle * radius_[i] > redetection;
+      }
     }
-    moved_since_detection_ = moved_since_detection_ || moved;
+    return moved;
   }
 
   EnergyReport energy_terms() const {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "blockdem/core/error.hpp"
+#include "blockdem/core/rotation.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/geometry/convex_polyhedron.hpp"
 #include "blockdem/geometry/mass_properties.hpp"
@@ -65,9 +66,9 @@ class Model {
       throw InvalidArgument("block '" + name + "': density must be > 0 kg/m^3, got " + std::to_string(density));
     const auto props = geometry::mass_properties(world_shape);
     bodies.position.push_back(props.centroid);
-    const Quaternion q(props.principal_axes);
-    bodies.orientation.push_back(q.normalized());
-    bodies.rotation.push_back(q.normalized().toRotationMatrix());
+    const Quaternion q = Quaternion(props.principal_axes).normalized();
+    bodies.orientation.push_back(q);
+    bodies.rotation.push_back(rotation_matrix(q));  // exactly what the step computes from the orientation
     bodies.velocity.push_back(Vec3::Zero());
     bodies.angular_velocity.push_back(Vec3::Zero());
     bodies.mass.push_back(density * props.volume);
