@@ -164,24 +164,20 @@ struct Maxwell {
         for (std::size_t c = 0; c < 6; ++c) stress[c] += s[i][c];
       return;
     }
-    // Local copies: no store can alias a later load, so the six lanes of a branch stay in registers.
-    ElementState state = s;
-    const std::array<double, 6> increment = elastic_increment;
-    std::array<double, 6> old_sum{}, new_sum{};
-    for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
-      const double decay = decay_[i], gain = gain_[i];
-      for (std::size_t c = 0; c < 6; ++c) {
-        const double old = state[i][c];
-        old_sum[c] += old;
-        state[i][c] = old * decay + gain * increment[c];
-        new_sum[c] += state[i][c];
-      }
-    }
-    s = state;
+    // One component at a time, over the branches: few values live at once, so that nothing is spilled to the stack.
     double work = 0.0;
     for (std::size_t c = 0; c < 6; ++c) {
-      stress[c] += new_sum[c];
-      work += 0.5 * (old_sum[c] + new_sum[c]) * strain_increment[c];
+      const double increment = elastic_increment[c];
+      double old_sum = 0.0, new_sum = 0.0;
+      for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
+        const double old = s[i][c];
+        const double updated = old * decay_[i] + gain_[i] * increment;
+        s[i][c] = updated;
+        old_sum += old;
+        new_sum += updated;
+      }
+      stress[c] += new_sum;
+      work += 0.5 * (old_sum + new_sum) * strain_increment[c];
     }
     dissipated += work;
   }

@@ -58,7 +58,10 @@ class DeformableState {
   Groups groups;
   std::vector<ElementState> element_state;
   std::vector<std::array<Vec3, 4>> element_force;  // N, on the element's nodes
-  std::vector<double> element_viscous;              // J, work on the element dashpots / branches
+  /// Elements per partial sum of element_viscous: a fixed number, so that the sums (and the energy report) do not
+  /// depend on the number of threads. A per-element array cost 16 bytes read and written per element-step.
+  static constexpr std::size_t viscous_chunk = 2048;
+  std::vector<double> element_viscous;              // J, work on the element dashpots / branches, per viscous_chunk
   std::vector<Vec3> truss_force;                    // N, on end 0 (end 1 gets the opposite)
   std::vector<double> node_inverse_mass;            // 1/kg
   std::vector<double> node_kinetic, node_gravity_work, node_viscous;
@@ -84,7 +87,7 @@ class DeformableState {
     const auto& te = m.deformable.tetrahedra;
     element_state.assign(te.size(), ElementState{});
     element_force.assign(te.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
-    element_viscous.assign(te.size(), 0.0);
+    element_viscous.assign((te.size() + viscous_chunk - 1) / viscous_chunk, 0.0);
     truss_force.assign(m.deformable.trusses.size(), Vec3::Zero());
     node_inverse_mass.resize(nd.size());
     for (std::size_t i = 0; i < nd.size(); ++i) node_inverse_mass[i] = 1.0 / nd.mass[i];
@@ -178,58 +181,77 @@ class DeformableState {
   void element_pass(model::Model& m, const Damping& damping, double increment_dt) {
     auto& te = m.deformable.tetrahedra;
     const Vec3* __restrict const velocity = m.deformable.nodes.velocity.data();
-    const auto count = static_cast<std::ptrdiff_t>(te.size());
+    const auto count = te.size();
+    const auto chunks = static_cast<std::ptrdiff_t>(element_viscous.size());
     const auto* __restrict const materials = m.deformable.materials.data();
 #pragma omp parallel for schedule(static) if (count > 1024)
-    for (std::ptrdiff_t tt = 0; tt < count; ++tt) {
-      const auto t = static_cast<std::size_t>(tt);
-      const auto& nodes = te.node[t];
-      const auto& g = te.gradient[t];
-      // grad v = sum_i v_i (x) grad N_i
-      Mat3 l = Mat3::Zero();
-      for (std::size_t k = 0; k < 4; ++k) l += velocity[nodes[k]] * g[k].transpose();
-      l *= increment_dt;
-      const double exx = l(0, 0), eyy = l(1, 1), ezz = l(2, 2);
-      const double gxy = l(0, 1) + l(1, 0), gyz = l(1, 2) + l(2, 1), gzx = l(2, 0) + l(0, 2);
-      const double ev = exx + eyy + ezz;
-      const auto& mat = materials[te.material[t]];
-      const double bulk = mat.bulk(), shear = mat.shear();
-      auto& s = te.stress[t];
-      const double dp = bulk * ev;
-      const double dxx = exx - ev / 3.0, dyy = eyy - ev / 3.0, dzz = ezz - ev / 3.0;
-      s[0] += dp + 2.0 * shear * dxx;
-      s[1] += dp + 2.0 * shear * dyy;
-      s[2] += dp + 2.0 * shear * dzz;
-      s[3] += shear * gxy;
-      s[4] += shear * gyz;
-      s[5] += shear * gzx;
-      std::array<double, 6> total = s;
-      if constexpr (tensor_form) {
+    for (std::ptrdiff_t c = 0; c < chunks; ++c) {
+      const std::size_t first = static_cast<std::size_t>(c) * viscous_chunk;
+      const std::size_t last = std::min(first + viscous_chunk, count);
+      double viscous = 0.0;  // J, on this chunk's dashpots / branches
+      for (std::size_t t = first; t < last; ++t) {
+        const auto& nodes = te.node[t];
+        const auto& g = te.gradient[t];
+        // The strain increment, the symmetric part of dt grad v = dt sum_i v_i (x) grad N_i, summed component by
+        // component (through a 3 x 3 temporary, GCC packed pairs through the stack: a store-forwarding stall per node).
+        double exx = 0.0, eyy = 0.0, ezz = 0.0, gxy = 0.0, gyz = 0.0, gzx = 0.0;
+        for (std::size_t k = 0; k < 4; ++k) {
+          const Vec3& u = velocity[nodes[k]];
+          const Vec3& b = g[k];
+          exx += u[0] * b[0];
+          eyy += u[1] * b[1];
+          ezz += u[2] * b[2];
+          gxy += u[0] * b[1] + u[1] * b[0];
+          gyz += u[1] * b[2] + u[2] * b[1];
+          gzx += u[2] * b[0] + u[0] * b[2];
+        }
+        exx *= increment_dt;
+        eyy *= increment_dt;
+        ezz *= increment_dt;
+        gxy *= increment_dt;
+        gyz *= increment_dt;
+        gzx *= increment_dt;
+        const double ev = exx + eyy + ezz;
+        const auto& mat = materials[te.material[t]];
+        const double bulk = mat.bulk(), shear = mat.shear();
+        auto& s = te.stress[t];
+        const double dp = bulk * ev;
+        const double dxx = exx - ev / 3.0, dyy = eyy - ev / 3.0, dzz = ezz - ev / 3.0;
+        s[0] += dp + 2.0 * shear * dxx;
+        s[1] += dp + 2.0 * shear * dyy;
+        s[2] += dp + 2.0 * shear * dzz;
+        s[3] += shear * gxy;
+        s[4] += shear * gyz;
+        s[5] += shear * gzx;
+        std::array<double, 6> total = s;
         double dissipated = 0.0;
-        const std::array<double, 6> elastic{dp + 2.0 * shear * dxx, dp + 2.0 * shear * dyy, dp + 2.0 * shear * dzz,
-                                            shear * gxy, shear * gyz, shear * gzx};
-        damping.element_stress(element_state[t], elastic, {exx, eyy, ezz, gxy, gyz, gzx}, increment_dt, total, dissipated);
-        element_viscous[t] += te.volume[t] * dissipated;
-      } else if constexpr (!std::is_same_v<typename Damping::ContactState, damping::NoState>) {
-        auto& st = element_state[t];
-        double dissipated = 0.0;
-        const double p = damping.spring_stress(st[0], bulk, ev, increment_dt, true, dissipated);
-        total[0] += p + damping.spring_stress(st[1], 2.0 * shear, dxx, increment_dt, true, dissipated);
-        total[1] += p + damping.spring_stress(st[2], 2.0 * shear, dyy, increment_dt, true, dissipated);
-        total[2] += p + damping.spring_stress(st[3], 2.0 * shear, dzz, increment_dt, true, dissipated);
-        total[3] += damping.spring_stress(st[4], shear, gxy, increment_dt, true, dissipated);
-        total[4] += damping.spring_stress(st[5], shear, gyz, increment_dt, true, dissipated);
-        total[5] += damping.spring_stress(st[6], shear, gzx, increment_dt, true, dissipated);
-        element_viscous[t] += te.volume[t] * dissipated;
+        if constexpr (tensor_form) {
+          const std::array<double, 6> elastic{dp + 2.0 * shear * dxx, dp + 2.0 * shear * dyy, dp + 2.0 * shear * dzz,
+                                              shear * gxy, shear * gyz, shear * gzx};
+          damping.element_stress(element_state[t], elastic, {exx, eyy, ezz, gxy, gyz, gzx}, increment_dt, total, dissipated);
+        } else if constexpr (!std::is_same_v<typename Damping::ContactState, damping::NoState>) {
+          auto& st = element_state[t];
+          const double p = damping.spring_stress(st[0], bulk, ev, increment_dt, true, dissipated);
+          total[0] += p + damping.spring_stress(st[1], 2.0 * shear, dxx, increment_dt, true, dissipated);
+          total[1] += p + damping.spring_stress(st[2], 2.0 * shear, dyy, increment_dt, true, dissipated);
+          total[2] += p + damping.spring_stress(st[3], 2.0 * shear, dzz, increment_dt, true, dissipated);
+          total[3] += damping.spring_stress(st[4], shear, gxy, increment_dt, true, dissipated);
+          total[4] += damping.spring_stress(st[5], shear, gyz, increment_dt, true, dissipated);
+          total[5] += damping.spring_stress(st[6], shear, gzx, increment_dt, true, dissipated);
+        }
+        // f_i = -V sigma grad N_i, with -V sigma formed first: each force component is then a plain sum. Scaling the
+        // vector sigma grad N_i instead made GCC pack components in pairs, through the stack when registers ran out.
+        const double v = te.volume[t];
+        const double sxx = -v * total[0], syy = -v * total[1], szz = -v * total[2], sxy = -v * total[3],
+                     syz = -v * total[4], szx = -v * total[5];
+        auto& f = element_force[t];
+        for (std::size_t k = 0; k < 4; ++k) {
+          const Vec3& b = g[k];
+          f[k] = Vec3(sxx * b[0] + sxy * b[1] + szx * b[2], sxy * b[0] + syy * b[1] + syz * b[2], szx * b[0] + syz * b[1] + szz * b[2]);
+        }
+        viscous += v * dissipated;
       }
-      // f_i = -V sigma grad N_i
-      const double v = te.volume[t];
-      auto& f = element_force[t];
-      for (std::size_t k = 0; k < 4; ++k) {
-        const Vec3& b = g[k];
-        f[k] = -v * Vec3(total[0] * b[0] + total[3] * b[1] + total[5] * b[2], total[3] * b[0] + total[1] * b[1] + total[4] * b[2],
-                         total[5] * b[0] + total[4] * b[1] + total[2] * b[2]);
-      }
+      element_viscous[static_cast<std::size_t>(c)] += viscous;
     }
   }
 
@@ -376,6 +398,7 @@ class DeformableState {
       e.viscous += node_viscous[i];
     }
     e.gravity_work += extra_work;
+    for (double w : element_viscous) e.viscous += w;
     const auto& te = m.deformable.tetrahedra;
     for (std::size_t t = 0; t < te.size(); ++t) {
       const auto& s = te.stress[t];
@@ -385,7 +408,6 @@ class DeformableState {
       const double dev = (s[0] - p) * (s[0] - p) + (s[1] - p) * (s[1] - p) + (s[2] - p) * (s[2] - p) +
                          2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
       e.elastic += te.volume[t] * (0.5 * p * p / bulk + 0.25 * dev / shear);
-      e.viscous += element_viscous[t];
       if constexpr (tensor_form) {
         const double branches = damping.element_stored_energy(element_state[t], bulk, shear);
         e.elastic += te.volume[t] * branches;
