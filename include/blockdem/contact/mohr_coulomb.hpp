@@ -78,8 +78,14 @@ struct MohrCoulomb {
     if (slipping) {  // slip: return to the Coulomb limit along the trial direction
       const double magnitude = std::sqrt(magnitude2);
       const double scale = limit / magnitude;
-      dissipated = limit * (magnitude - limit) / p.shear_stiffness;  // limit times the plastic slip
       tau = {tau[0] * scale, tau[1] * scale};
+      // The work done on the shear springs over the step, -(tau_old + tau_new) / 2 . du, less what they store more:
+      // the same measure as the energy report's. (Limit times the plastic slip is that only at a constant limit: as
+      // the normal stress changed, a block that bounced while sliding was credited with slip it never dissipated.)
+      const double work = -0.5 * ((h.shear[0] + tau[0]) * du_shear[0] + (h.shear[1] + tau[1]) * du_shear[1]);
+      const double stored_change = 0.5 * (tau[0] * tau[0] + tau[1] * tau[1] - h.shear[0] * h.shear[0] - h.shear[1] * h.shear[1]) /
+                                   p.shear_stiffness;
+      dissipated = work - stored_change;
       if (p.cohesion > 0 || p.tensile_strength > 0) failed = true;
     }
     h.shear = tau;
