@@ -79,7 +79,7 @@ struct ContactGroup {
   std::vector<std::uint8_t> field_form;
   std::vector<double> field_viscous;  // J, the viscous work of the branches while in the field form, accumulated
   // The CPs' area moments sum a, sum a x1, sum a x2, sum a x1^2, sum a x2^2, sum a x1 x2 (m^2, m^3, m^4): the
-  // contact's stiffness on its generalised elongation, from which the field's work per step follows.
+  // contact's stiffness on its generalised elongation, from which the field's work per step follows (complete()).
   std::vector<std::array<double, 6>> area_moments;
 
   // Per contact point.
@@ -107,7 +107,6 @@ struct ContactGroup {
       field.push_back(f);
       field_form.push_back(in_field_form ? 1 : 0);
       field_viscous.push_back(viscous);
-      area_moments.push_back({});
     }
     body_a.push_back(a);
     body_b.push_back(b);
@@ -153,19 +152,20 @@ struct ContactGroup {
     slip_dissipation.push_back(slip);
     viscous_dissipation.push_back(viscous);
     ++first_point.back();
-    if constexpr (has_field) {
-      auto& m = area_moments.back();
-      m[0] += a;
-      m[1] += a * u;
-      m[2] += a * v;
-      m[3] += a * u * u;
-      m[4] += a * v * v;
-      m[5] += a * u * v;
-    }
   }
 
-  /// Builds the gather lists for `blocks` blocks, in increasing contact order so that sums are reproducible.
-  void build_gather_lists(std::size_t blocks) {
+  /// Builds what follows from the contacts once they are all added: the gather lists for `blocks` blocks, in
+  /// increasing contact order so that sums are reproducible, and the area moments of each contact's CPs.
+  void complete(std::size_t blocks) {
+    if constexpr (has_field) {
+      area_moments.assign(contacts(), {});
+      for (std::size_t c = 0; c < contacts(); ++c)
+        for (std::uint32_t k = first_point[c]; k < first_point[c + 1]; ++k) {
+          const double a = area[k], u = s1[k], v = s2[k];
+          auto& m = area_moments[c];
+          m = {m[0] + a, m[1] + a * u, m[2] + a * v, m[3] + a * u * u, m[4] + a * v * v, m[5] + a * u * v};
+        }
+    }
     first.assign(blocks + 1, 0);
     for (std::size_t c = 0; c < contacts(); ++c) {
       ++first[body_a[c] + 1];

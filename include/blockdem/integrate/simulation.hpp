@@ -540,7 +540,7 @@ class Simulation {
     }
     retired_slip_ += old_slip - carried_slip;
     retired_viscous_ += old_viscous - carried_viscous;
-    for_each_group([&](auto& g) { g.build_gather_lists(b.size()); });
+    for_each_group([&](auto& g) { g.complete(b.size()); });
     detected_position_ = b.position;
     detected_orientation_ = b.orientation;
     detected_base_displacement_ = base_displacement_;
@@ -693,19 +693,11 @@ class Simulation {
       to.field.assign(from.contacts(), typename To::Field{});
       to.field_form.assign(from.contacts(), damping_.contact_field ? 1 : 0);
       to.field_viscous.assign(from.contacts(), 0.0);
-      to.area_moments.clear();
-      for (std::size_t c = 0; c < from.contacts(); ++c) {
-        auto& m = to.area_moments.emplace_back();
-        for (std::uint32_t k = from.first_point[c]; k < from.first_point[c + 1]; ++k) {
-          const double a = from.area[k], u = from.s1[k], v = from.s2[k];
-          m = {m[0] + a, m[1] + a * u, m[2] + a * v, m[3] + a * u * u, m[4] + a * v * v, m[5] + a * u * v};
-        }
-      }
     }
     to.traction = from.traction;
     to.slip_dissipation.assign(from.size(), 0.0);
     to.viscous_dissipation.assign(from.size(), 0.0);
-    to.build_gather_lists(model_->bodies.size());
+    to.complete(model_->bodies.size());
   }
 
   /// a n + b t1 + c t2, written out: Eigen left this sum as an out-of-line call in the contact loop.
