@@ -27,10 +27,13 @@ struct Elastic {
   };
 
   static constexpr Response update(const Parameters& p, History& h, double du_normal, Shear du_shear) noexcept {
-    h.gap += du_normal;
-    h.shear[0] -= p.shear_stiffness * du_shear[0];
-    h.shear[1] -= p.shear_stiffness * du_shear[1];
-    return {-p.normal_stiffness * h.gap, h.shear, 0.0};
+    // The new values from locals, not read back from the history: read back, GCC loaded the two shear stresses as
+    // one 16-byte word right after storing them apart (a failed store forward per CP-step).
+    const double gap = h.gap + du_normal;
+    const Shear tau{h.shear[0] - p.shear_stiffness * du_shear[0], h.shear[1] - p.shear_stiffness * du_shear[1]};
+    h.gap = gap;
+    h.shear = tau;
+    return {-p.normal_stiffness * gap, tau, 0.0};
   }
   static constexpr double normal_stiffness(const Parameters& p) noexcept { return p.normal_stiffness; }
   static constexpr double shear_stiffness(const Parameters& p) noexcept { return p.shear_stiffness; }
