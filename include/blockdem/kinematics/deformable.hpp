@@ -93,6 +93,7 @@ class DeformableState {
     element_state.assign(tensor_form ? (te.size() + element_tile - 1) / element_tile : te.size(), ElementState{});
     element_force.assign(te.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
     element_viscous.assign((te.size() + viscous_chunk - 1) / viscous_chunk, 0.0);
+    material_moduli.assign(m.deformable.materials.size(), {0.0, 0.0});
     truss_force.assign(m.deformable.trusses.size(), Vec3::Zero());
     node_inverse_mass.resize(nd.size());
     for (std::size_t i = 0; i < nd.size(); ++i) node_inverse_mass[i] = 1.0 / nd.mass[i];
@@ -392,6 +393,7 @@ class DeformableState {
   static constexpr std::size_t group_count = 2 * sizeof...(Laws);
   std::array<std::vector<std::uint32_t>, group_count> node_first, node_entry, rigid_first, rigid_entry;
   std::array<std::vector<double>, group_count> node_coefficient;
+  std::vector<std::array<double, 2>> material_moduli;  // Pa, bulk K and shear G per material (material_moduli_of)
   std::vector<std::uint32_t> element_first, element_entry, truss_first, truss_entry, rigid_truss_first, rigid_truss_entry;
 
   static double sum(const std::vector<double>& v) {
@@ -509,13 +511,21 @@ class DeformableState {
     }
   }
 
+  /// K and G (Pa) of every material, from E and nu once per pass: per element they cost two divisions.
+  const std::array<double, 2>* material_moduli_of(const model::Model& m) {
+    const auto& materials = m.deformable.materials;
+    material_moduli.resize(materials.size());  // sized in setup: allocates only if materials were added since
+    for (std::size_t i = 0; i < materials.size(); ++i) material_moduli[i] = {materials[i].bulk(), materials[i].shear()};
+    return material_moduli.data();
+  }
+
   /// The element pass of the other policies: the seven strain components' springs per element (spring_stress).
   void element_pass_springs(model::Model& m, const Damping& damping, double increment_dt) {
     auto& te = m.deformable.tetrahedra;
     const Vec3* __restrict const velocity = m.deformable.nodes.velocity.data();
     const auto count = te.size();
     const auto chunks = static_cast<std::ptrdiff_t>(element_viscous.size());
-    const auto* __restrict const materials = m.deformable.materials.data();
+    const auto* __restrict const moduli = material_moduli_of(m);
 #pragma omp parallel for schedule(static) if (count > 1024)
     for (std::ptrdiff_t c = 0; c < chunks; ++c) {
       const std::size_t first = static_cast<std::size_t>(c) * viscous_chunk;
@@ -525,8 +535,7 @@ class DeformableState {
         const auto& g = te.gradient[t];
         const auto [exx, eyy, ezz, gxy, gyz, gzx] = strain_increment(velocity, te.node[t], g, increment_dt);
         const double ev = exx + eyy + ezz;
-        const auto& mat = materials[te.material[t]];
-        const double bulk = mat.bulk(), shear = mat.shear();
+        const auto [bulk, shear] = moduli[te.material[t]];
         auto& s = te.stress[t];
         const double dp = bulk * ev;
         const double dxx = exx - ev / 3.0, dyy = eyy - ev / 3.0, dzz = ezz - ev / 3.0;
@@ -566,7 +575,7 @@ class DeformableState {
     const Vec3* __restrict const velocity = m.deformable.nodes.velocity.data();
     const auto count = te.size();
     const auto chunks = static_cast<std::ptrdiff_t>(element_viscous.size());
-    const auto* __restrict const materials = m.deformable.materials.data();
+    const auto* __restrict const moduli = material_moduli_of(m);
 #pragma omp parallel for schedule(static) if (count > 1024)
     for (std::ptrdiff_t c = 0; c < chunks; ++c) {
       const std::size_t first = static_cast<std::size_t>(c) * viscous_chunk;
@@ -589,8 +598,7 @@ class DeformableState {
             for (std::size_t b = 0; b < ahead_step; b += 64) __builtin_prefetch(ahead + l * ahead_step + b, 1);
           const auto [exx, eyy, ezz, gxy, gyz, gzx] = strain_increment(velocity, te.node[t], te.gradient[t], increment_dt);
           const double ev = exx + eyy + ezz;
-          const auto& mat = materials[te.material[t]];
-          const double bulk = mat.bulk(), shear = mat.shear();
+          const auto [bulk, shear] = moduli[te.material[t]];
           const double dp = bulk * ev;
           const double dxx = exx - ev / 3.0, dyy = eyy - ev / 3.0, dzz = ezz - ev / 3.0;
           const double d[6] = {dp + 2.0 * shear * dxx, dp + 2.0 * shear * dyy, dp + 2.0 * shear * dzz,
