@@ -11,7 +11,8 @@
 // so a Maxwell branch of fraction alpha (or a dashpot beta k) on each component is a branch alpha D (or beta D) on the
 // whole element, and the branch energies s^2 / (2 alpha k) add up to the element's. Maxwell<N> does the same in tensor
 // form (damping::Maxwell::element_stress: one branch stress tensor updated with the elastic stress increment), which
-// is equivalent and cheaper (6 components instead of 7, contiguous per branch).
+// is equivalent and cheaper (6 components instead of 7), applied across a tile of elements at once, one per SIMD lane
+// (element_stress_tile, element_pass_tiles).
 
 #include <algorithm>
 #include <array>
@@ -48,7 +49,8 @@ class DeformableState {
   using DeformableFaceGroup = NodeContactGroup<L, Damping, Deformable>;
   using Groups = std::tuple<RigidFaceGroup<Laws>..., DeformableFaceGroup<Laws>...>;
   /// Elements per tile of the tensor form: fixed, so that which elements share a vector does not depend on the
-  /// number of threads. 32 keeps a tile's branch stresses, increments and gradients within the L1 cache.
+  /// number of threads. With 32, a tile's branch stresses (4.6 kB for Maxwell<3>), its increment buffers and the
+  /// gradients it reads twice fit the L1 cache together (other sizes were not measured).
   static constexpr std::size_t element_tile = 32;
   /// Policies with a tensor form for whole elements (Maxwell<N>: element_stress_tile) keep their own element state,
   /// per tile of element_tile elements; the others act on the seven strain components (volumetric, 3 deviatoric
