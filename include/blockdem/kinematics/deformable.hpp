@@ -50,7 +50,8 @@ class DeformableState {
   using Groups = std::tuple<RigidFaceGroup<Laws>..., DeformableFaceGroup<Laws>...>;
   /// Elements per tile of the tensor form: fixed, so that which elements share a vector does not depend on the
   /// number of threads. With 32, a tile's branch stresses (4.6 kB for Maxwell<3>), its increment buffers and the
-  /// gradients it reads twice fit the L1 cache together (other sizes were not measured).
+  /// gradients it reads twice fit the L1 cache together. 64 was slower (22.7 against 19.9 ms per step on the
+  /// benchmark wall with Maxwell<3>); 16 was not distinguishable from 32.
   static constexpr std::size_t element_tile = 32;
   /// Policies with a tensor form for whole elements (Maxwell<N>: element_stress_tile) keep their own element state,
   /// per tile of element_tile elements; the others act on the seven strain components (volumetric, 3 deviatoric
