@@ -136,3 +136,45 @@ TEST_CASE("maxwell: the contact field read at a CP equals that CP's own branch s
   CHECK(field_work == test::approx(own_work).epsilon(1e-12));
   CHECK(own_work > 0);
 }
+
+TEST_CASE("maxwell: element_stress_tile (elements across lanes) equals element_stress per element") {
+  // Reference: the per-element update, which the deformable damping-ratio test validates against eq. 19.
+  using M = damping::Maxwell<3>;
+  constexpr std::size_t lanes = 8, used = 5;  // lanes past `used` stand for the end of a last, partial tile
+  M m({MaxwellBranch::from_peak(0.02, 2 * pi * 1.0), MaxwellBranch::from_peak(0.02, 2 * pi * 6.0),
+       MaxwellBranch::from_peak(0.02, 2 * pi * 40.0)});
+  const double dt = 1e-4;
+  m.prepare(dt);
+  M::ElementTile<lanes> tile{};
+  std::array<M::ElementState, used> single{};
+  for (int step = 0; step < 200; ++step) {
+    const double h = (step == 0 || step == 100) ? 0.0 : dt;  // no time passes: the first step, and after a detection
+    M::ElementLanes<lanes> elastic{}, strain{}, branch{};
+    std::array<double, lanes> work{};
+    for (std::size_t l = 0; l < used; ++l)
+      for (std::size_t c = 0; c < 6; ++c) {
+        strain[c][l] = 1e-6 * std::sin(0.1 * step + 0.7 * static_cast<double>(l) + 1.3 * static_cast<double>(c));
+        elastic[c][l] = 5e9 * (1.0 + 0.1 * static_cast<double>(c)) * strain[c][l];
+      }
+    m.element_stress_tile(tile, elastic, strain, h, branch, work);
+    for (std::size_t l = 0; l < used; ++l) {
+      std::array<double, 6> want{}, e{}, s{};
+      for (std::size_t c = 0; c < 6; ++c) {
+        e[c] = elastic[c][l];
+        s[c] = strain[c][l];
+      }
+      double want_work = 0.0;
+      m.element_stress(single[l], e, s, h, want, want_work);
+      for (std::size_t c = 0; c < 6; ++c) CHECK(branch[c][l] == test::approx(want[c]).epsilon(1e-13).scale(1.0));
+      CHECK(work[l] == test::approx(want_work).epsilon(1e-13).scale(1e-30));
+    }
+    for (std::size_t l = used; l < lanes; ++l) {
+      CHECK(work[l] == 0.0);
+      for (std::size_t c = 0; c < 6; ++c) CHECK(branch[c][l] == 0.0);
+    }
+  }
+  for (std::size_t l = 0; l < used; ++l)
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t c = 0; c < 6; ++c) CHECK(tile.stress[c][i][l] == test::approx(single[l][i][c]).epsilon(1e-13).scale(1.0));
+  CHECK(m.element_stored_energy(single[0], 5e9 / 2.4, 5e9 / 2.4) > 0);
+}

@@ -325,6 +325,33 @@ TEST_CASE("deformable threads: one and two threads give bitwise identical result
   CHECK(test::differences_between_one_and_two_threads(run) == 0);
 }
 
+TEST_CASE("deformable threads: Maxwell<3> element tiles over several chunks give bitwise identical results and energy") {
+  // More elements than the parallel threshold and than two viscous chunks, and a last, partial tile.
+  using State = kinematics::DeformableState<damping::Maxwell<3>, contact::MohrCoulomb>;
+  std::size_t tetrahedra = 0;
+  auto run = [&] {
+    model::Model m;
+    m.gravity = Vec3(2.0, 0, -9.81);
+    m.add_block(geometry::make_box(Vec3(-1, -1, -0.5), Vec3(1, 1, 0)), 2000, "base", 0, model::Motion::fixed);
+    const auto a = m.add_block(geometry::make_box(Vec3(-0.5, -0.25, 0), Vec3(0.5, 0.25, 0.5)), 2000, "a", 1);
+    m.make_deformable(a, 0.06, model::IsotropicElastic(10e9, 0.2));
+    tetrahedra = m.deformable.tetrahedra.size();
+    const damping::Maxwell<3> policy({damping::MaxwellBranch::from_peak(0.05, 30.0), damping::MaxwellBranch::from_peak(0.05, 300.0),
+                                      damping::MaxwellBranch::from_peak(0.05, 3000.0)});
+    Simulation<damping::Maxwell<3>, contact::MohrCoulomb> sim(m, policy,
+                                                              [](int, int) { return contact::MohrCoulomb::Parameters(1e10, 1e10, 0, 0, 0.4); });
+    for (int k = 0; k < 100; ++k) sim.step();
+    auto out = m.deformable.nodes.position;
+    const auto e = sim.energy();
+    out.push_back(Vec3(e.viscous, e.elastic, e.kinetic));
+    return out;
+  };
+  CHECK(test::differences_between_one_and_two_threads(run) == 0);
+  MESSAGE(tetrahedra << " tetrahedra");
+  CHECK(tetrahedra > 2 * State::viscous_chunk);
+  CHECK(tetrahedra % State::element_tile != 0);
+}
+
 TEST_CASE("deformable truss: a block hanging from a tie stretches it by W L / (E A); the tie is in the timestep") {
   // Reference: Hooke's law for an axial bar, delta = N L / (E A).
   model::Model m;
