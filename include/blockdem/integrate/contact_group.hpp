@@ -132,15 +132,6 @@ struct ContactGroup {
     return spring_state[k];
   }
 
-  /// Moves contact c from the field form to its CPs' own branch states (the field's values at the CPs).
-  void to_point_form(const Damping& damping, std::size_t c) {
-    if constexpr (has_field) {
-      if (!field_form[c]) return;
-      for (std::uint32_t k = first_point[c]; k < first_point[c + 1]; ++k) spring_state[k] = spring_at(damping, c, k);
-      field_form[c] = 0;
-    }
-  }
-
   /// Adds a CP to the contact opened last.
   void add_point(double u, double v, double a, const History& h, const SpringState& spring, double slip, double viscous) {
     s1.push_back(u);

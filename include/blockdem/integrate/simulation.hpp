@@ -960,22 +960,6 @@ class Simulation {
     return std::bit_cast<double>((std::bit_cast<std::uint64_t>(a) & mask) | (std::bit_cast<std::uint64_t>(b) & ~mask));
   }
 
-  /// rotation_matrix() of the unit quaternion (x, y, z, w) into the nine coefficients of a column-major Mat3.
-  [[gnu::always_inline]] static void rotation_coefficients(const double* q, double* r) noexcept {
-    const double x = q[0], y = q[1], z = q[2], w = q[3];
-    const double xx = 2 * x * x, yy = 2 * y * y, zz = 2 * z * z;
-    const double xy = 2 * x * y, xz = 2 * x * z, yz = 2 * y * z, wx = 2 * w * x, wy = 2 * w * y, wz = 2 * w * z;
-    r[0] = 1 - yy - zz;
-    r[1] = xy + wz;
-    r[2] = xz - wy;
-    r[3] = xy - wz;
-    r[4] = 1 - xx - zz;
-    r[5] = yz + wx;
-    r[6] = xz + wy;
-    r[7] = yz - wx;
-    r[8] = 1 - xx - yy;
-  }
-
   /// Damped velocity update of blocks [begin, end), one block per vector lane and all of them as if free (the
   /// caller puts back the others). Fixed degrees of freedom are selected, not branched around.
   void update_velocities(std::size_t begin, std::size_t end, double increment_dt) {
@@ -1089,8 +1073,8 @@ class Simulation {
         // turned(), with cos x and sin x / x of the half angle x from their series.
         const double wx = angular_velocity[3 * k], wy = angular_velocity[3 * k + 1], wz = angular_velocity[3 * k + 2];
         const double x2 = 0.25 * dt * dt * (wx * wx + wy * wy + wz * wz);
-        const double cx = 1.0 + x2 * (-1.0 / 2 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320))));
-        const double sx = 1.0 + x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880))));
+        double cx, sx;
+        half_angle_series(x2, cx, sx);
         const double f = h * sx;
         const double vx = f * wx, vy = f * wy, vz = f * wz;
         const double qx = orientation[4 * k], qy = orientation[4 * k + 1], qz = orientation[4 * k + 2], qw = orientation[4 * k + 3];
