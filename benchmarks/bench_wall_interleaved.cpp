@@ -1,0 +1,97 @@
+// The cost of Maxwell<3> relative to MassProportional (and of None) per step on the wall of bench_wall, measured
+// so that a noisy machine does not decide the answer: the three simulations live in one process and take turns,
+// a few steps each, so that whatever slows the machine down slows all three alike; every step is timed on its
+// own, and the report gives quantiles of the step times (the low ones are the least disturbed) and their ratios.
+//
+//   bench_wall_interleaved [--law elastic|mohr-coulomb|softening] [--rounds 50] [--steps-per-turn 8] [--threads 1]
+//
+// On a virtual machine whose other tenants come and go, a whole benchmark run of one binary can be 30 % slower
+// than the next; the ratio of two runs is then noise. Taking turns within one process keeps the ratio to about
+// 1 %, run to run.
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "blockdem/integrate/simulation.hpp"
+#include "wall_model.hpp"
+
+namespace {
+
+using namespace blockdem;
+using namespace blockdem::benchmarks;
+
+/// One simulation of the wall and the times of its steps (us).
+template <class Law, class Damping>
+struct Contender {
+  std::unique_ptr<model::Model> model = std::make_unique<model::Model>(make_wall());
+  Simulation<Damping, Law> simulation{*model, make_damping<Damping>(), [](int, int) { return parameters<Law>(); }};
+  std::vector<double> step_us;
+
+  Contender() {
+    for (int i = 0; i < 20; ++i) simulation.step();  // warm up, let it settle a little (as bench_wall)
+  }
+  /// Runs `steps` steps; the first of a turn is not kept (its data were pushed out of the caches by the others).
+  void turn(int steps) {
+    for (int i = 0; i < steps; ++i) {
+      const auto start = std::chrono::steady_clock::now();
+      simulation.step();
+      const auto stop = std::chrono::steady_clock::now();
+      if (i > 0) step_us.push_back(std::chrono::duration<double, std::micro>(stop - start).count());
+    }
+  }
+  double quantile(double f) const {
+    auto v = step_us;
+    std::sort(v.begin(), v.end());
+    return v[static_cast<std::size_t>(f * static_cast<double>(v.size() - 1))];
+  }
+};
+
+template <class Law>
+void compare(const std::string& law, int rounds, int steps, int threads) {
+  omp_set_num_threads(threads);
+  Contender<Law, damping::None> none;
+  Contender<Law, damping::MassProportional> mass;
+  Contender<Law, damping::Maxwell<3>> maxwell;
+  const auto points = static_cast<double>(mass.simulation.contact_points());
+  for (int r = 0; r < rounds; ++r) {
+    none.turn(steps);
+    mass.turn(steps);
+    maxwell.turn(steps);
+  }
+  std::printf("wall: %zu blocks, %.0f contact points, law %s, %d thread(s), %d rounds of %d steps per policy\n",
+              mass.model->bodies.size(), points, law.c_str(), threads, rounds, steps);
+  std::printf("quantile | us per step: None  Mass  Maxwell<3> | ns per CP-step: None  Mass  Maxwell<3> | Maxwell<3> / Mass\n");
+  for (const double f : {0.1, 0.25, 0.5}) {
+    const double n = none.quantile(f), m = mass.quantile(f), x = maxwell.quantile(f);
+    std::printf("q%02.0f      | %8.1f %8.1f %8.1f | %6.1f %6.1f %6.1f | %.3f\n", 100 * f, n, m, x, 1e3 * n / points,
+                1e3 * m / points, 1e3 * x / points, x / m);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Maxwell<3> against MassProportional and None on the bench_wall wall, taking turns in one process"};
+  std::string law = "elastic";
+  int rounds = 50, steps = 8, threads = 1;
+  app.add_option("--law", law, "joint law")->check(CLI::IsMember({"elastic", "mohr-coulomb", "softening"}));
+  app.add_option("--rounds", rounds, "turns per policy")->check(CLI::Range(1, 100000));
+  app.add_option("--steps-per-turn", steps, "steps per turn (the first of each is not timed)")->check(CLI::Range(2, 100000));
+  app.add_option("--threads", threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  if (law == "elastic") compare<contact::Elastic>(law, rounds, steps, threads);
+  else if (law == "mohr-coulomb") compare<contact::MohrCoulomb>(law, rounds, steps, threads);
+  else compare<contact::ElastoSoftening>(law, rounds, steps, threads);
+}
