@@ -94,45 +94,48 @@ TEST_CASE("maxwell: spring_stresses (three springs at once) equals three spring_
   CHECK(single_work > 0);
 }
 
-TEST_CASE("maxwell: the contact field read at a CP equals that CP's own branch states (spring_stresses)") {
+TEST_CASE("maxwell: the contact field gives the resultant and the work of every CP's own branch states (spring_stresses)") {
   // Reference: spring_stresses at four CPs of one rigid contact, each driven by the elongation B(x1, x2) q of the
-  // contact's generalised increment q (the rigid relative motion), against one field advanced by q.
+  // contact's generalised increment q (the rigid relative motion), summed over the CPs with their areas, against
+  // one field advanced by q.
   damping::Maxwell<3> m({MaxwellBranch::from_peak(0.02, 2 * pi * 1.0), MaxwellBranch::from_peak(0.02, 2 * pi * 6.0),
                          MaxwellBranch::from_peak(0.02, 2 * pi * 40.0)});
   const double dt = 1e-4, kn = 1e10, ks = 4e9;
   m.prepare(dt);
-  const std::array<std::array<double, 2>, 4> points{{{0.12, 0.05}, {-0.12, 0.05}, {-0.12, -0.05}, {0.3, -0.2}}};
+  const std::array<std::array<double, 3>, 4> points{{{0.12, 0.05, 0.01}, {-0.12, 0.05, 0.02}, {-0.12, -0.05, 0.015}, {0.3, -0.2, 0.005}}};
+  std::array<double, 6> moments{};
+  for (const auto& [x1, x2, a] : points)
+    moments = {moments[0] + a, moments[1] + a * x1, moments[2] + a * x2, moments[3] + a * x1 * x1, moments[4] + a * x2 * x2,
+               moments[5] + a * x1 * x2};
   std::array<std::array<damping::Maxwell<3>::ContactState, 3>, 4> own{};
   damping::Maxwell<3>::ContactField field{};
   double own_work = 0, field_work = 0;
-  // The two differ by rounding only: relative to the largest stress (the CP elongations are sums of terms of
-  // either sign).
+  // The two differ by rounding only: relative to the largest force and moment.
   double largest = 0, deviation = 0;
   for (int step = 0; step < 300; ++step) {
     const double t = step;
     const damping::Maxwell<3>::Generalised q{1e-7 * std::sin(0.1 * t), -2e-7 * std::cos(0.07 * t), 3e-8 * std::sin(0.3 * t),
                                              4e-7 * std::cos(0.05 * t), -1e-6 * std::sin(0.02 * t), 5e-7 * std::sin(0.11 * t)};
-    damping::Maxwell<3>::Generalised before{}, after{};
     const double h = step == 0 ? 0.0 : dt;
-    m.advance_field(field, q, h, before, after);
+    const auto got = m.advance_field(field, q, damping::Maxwell<3>::contact_stiffness(moments, kn, ks, q), h);
+    field_work += got.work;
+    damping::Maxwell<3>::Generalised want{};  // sum a B^T s over the CPs
     for (std::size_t p = 0; p < points.size(); ++p) {
-      const double x1 = points[p][0], x2 = points[p][1];
+      const auto [x1, x2, a] = points[p];
       const std::array<double, 3> e{q[0] + x2 * q[4] - x1 * q[5], q[1] - x2 * q[3], q[2] + x1 * q[3]};
-      const auto want = m.spring_stresses(own[p], kn, ks, e, h, true, own_work);
-      const auto got = damping::Maxwell<3>::field_stress(after, kn, ks, x1, x2);
-      const auto old = damping::Maxwell<3>::field_stress(before, kn, ks, x1, x2);
-      for (std::size_t j = 0; j < 3; ++j) {
-        largest = std::max(largest, std::abs(want[j]));
-        deviation = std::max(deviation, std::abs(got[j] - want[j]));
-        field_work += 0.5 * (old[j] + got[j]) * e[j];
-      }
-      const auto branches = m.field_branch_stresses(field, kn, ks, x1, x2);
-      for (std::size_t j = 0; j < 3; ++j)
-        for (std::size_t i = 0; i < 3; ++i) deviation = std::max(deviation, std::abs(branches[j][i] - own[p][j][i]));
+      double work = 0;
+      const auto s = m.spring_stresses(own[p], kn, ks, e, h, true, work);
+      own_work += a * work;
+      want = {want[0] + a * s[0], want[1] + a * s[1], want[2] + a * s[2], want[3] + a * (x1 * s[2] - x2 * s[1]),
+              want[4] + a * x2 * s[0], want[5] - a * x1 * s[0]};
+    }
+    for (std::size_t j = 0; j < 6; ++j) {
+      largest = std::max(largest, std::abs(want[j]));
+      deviation = std::max(deviation, std::abs(got.resultant[j] - want[j]));
     }
   }
   CHECK(largest > 1.0);
-  CHECK(deviation < 1e-13 * largest);
+  CHECK(deviation < 1e-12 * largest);
   CHECK(field_work == test::approx(own_work).epsilon(1e-12));
   CHECK(own_work > 0);
 }

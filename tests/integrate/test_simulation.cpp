@@ -319,3 +319,33 @@ TEST_CASE("simulation: Maxwell branches in the contact-field form give the motio
   CHECK(field.energy.viscous == test::approx(point.energy.viscous).epsilon(1e-8));
   CHECK(field.energy.elastic == test::approx(point.energy.elastic).epsilon(1e-8));
 }
+
+TEST_CASE("contact group: a Maxwell field kept as forces gives back the elongations at the CPs, also when G is singular") {
+  // Reference: the CP elongations B(x1, x2) h of the field given to begin_contact. complete() keeps F = G h; the
+  // elongations recovered from F must give the same B h at every CP of the contact: with four CPs (G regular, h
+  // itself), with two (G singular: a turn about the line through them moves neither) and with one.
+  using Group = ContactGroup<contact::Elastic, damping::Maxwell<3>>;
+  const std::vector<std::vector<std::array<double, 3>>> layouts{
+      {{0.12, 0.05, 0.01}, {-0.12, 0.05, 0.02}, {-0.12, -0.05, 0.015}, {0.3, -0.2, 0.005}},
+      {{0.12, 0.05, 0.01}, {-0.2, -0.03, 0.02}},
+      {{0.1, -0.04, 0.01}}};
+  for (const auto& points : layouts) {
+    Group g;
+    g.properties.push_back(contact::Elastic::Parameters(1e10, 4e9));
+    Group::Field field{};
+    for (std::size_t i = 0; i < field.size(); ++i)
+      for (std::size_t j = 0; j < 6; ++j) field[i][j] = 1e-6 * std::sin(1.0 + 3.0 * static_cast<double>(i) + static_cast<double>(j));
+    g.begin_contact(0, 1, 0, Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX(), true, field);
+    for (const auto& [x1, x2, a] : points) g.add_point(x1, x2, a, {}, {}, 0.0, 0.0);
+    g.complete(2);
+    const auto h = g.field_elongations(0);
+    for (std::size_t i = 0; i < field.size(); ++i)
+      for (const auto& [x1, x2, a] : points) {
+        damping::Maxwell<3>::Generalised given{};
+        std::copy_n(field[i].begin(), 6, given.begin());
+        const auto want = damping::Maxwell<3>::field_stress(given, 1.0, 1.0, x1, x2);
+        const auto got = damping::Maxwell<3>::field_stress(h[i], 1.0, 1.0, x1, x2);
+        for (std::size_t j = 0; j < 3; ++j) CHECK(got[j] == test::approx(want[j]).scale(1e-6).epsilon(1e-9));
+      }
+  }
+}

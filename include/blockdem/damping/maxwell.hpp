@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <span>
 
 #include "blockdem/core/constexpr_math.hpp"
@@ -268,40 +269,63 @@ struct Maxwell {
   //   e_n = e0_n + x2 r_1 - x1 r_2,   e_1 = e0_1 - x2 r_n,   e_2 = e0_2 + x1 r_n.
   // The branch update is linear, so while every CP of the contact is active its branch stresses are exactly
   // s_i = K B h_i (K = diag(k_n, k_s, k_s)) with one filtered elongation per branch, h_i <- h_i e^(-dt/tau_i) +
-  // alpha_i tau_i (1 - e^(-dt/tau_i)) q / dt: six numbers per branch and contact instead of three per branch and CP,
-  // and per CP only the evaluation of B at the sum over branches. When a CP releases its branches (it fails or
-  // opens), the contact goes over to the per-CP state (spring_stresses), from the field's values at its CPs.
-  using Generalised = std::array<double, 6>;                             // e0_n, e0_1, e0_2 (m); r_n, r_1, r_2 (rad)
-  using ContactField = std::array<Generalised, static_cast<std::size_t>(N)>;  // h_i, one per branch
+  // alpha_i tau_i (1 - e^(-dt/tau_i)) q / dt. Summed over the CPs (area a) they act on the contact with the
+  // generalised force F_i = G h_i, G = sum a B^T K B (contact_stiffness), which follows the same update with G q
+  // in place of q. The field keeps F_i: six numbers per branch and contact instead of three per branch and CP, per
+  // step one product G q, and the contact's force is sum_i F_i. The per-CP stresses K B h_i follow from any h_i
+  // with G h_i = F_i (ContactGroup::field_elongations): B h is the same for all of them at the contact's CPs. When
+  // a CP releases its branches (it fails or opens), the contact goes over to the per-CP state (spring_stresses),
+  // from the field's values at its CPs.
+  using Generalised = std::array<double, 6>;  // e0_n, e0_1, e0_2 (m); r_n, r_1, r_2 (rad); or the forces (N, N m)
+  // F_i, one per branch (N, N m; force along n, t1, t2, then moment about the origin along n, t1, t2), each followed
+  // by two zeros: two whole vectors of four lanes.
+  using ContactField = std::array<std::array<double, 8>, static_cast<std::size_t>(N)>;
   /// Contacts between rigid blocks start in the field form; false keeps every CP's own branch state from the start
   /// (the reference the field form is tested against).
   bool contact_field = true;
 
-  /// Advances the field by the step dt (s) under the generalised elongation increment q; `before` and `after`
-  /// receive sum_i h_i at the start and at the end of the step (equal when dt <= 0: no time passes).
-  void advance_field(ContactField& f, const Generalised& q, double dt, Generalised& before, Generalised& after) const noexcept {
-    constexpr std::size_t n = static_cast<std::size_t>(N);
-    before = f[0];
-    for (std::size_t i = 1; i < n; ++i)
-      for (std::size_t j = 0; j < 6; ++j) before[j] += f[i][j];
-    if (dt <= 0.0) {
-      after = before;
-      return;
-    }
-    after = Generalised{};
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j = 0; j < 6; ++j) {
-        f[i][j] = f[i][j] * decay_[i] + gain_[i] * q[j];
-        after[j] += f[i][j];
+  /// What advance_field returns: the generalised force of the field on the contact at the end of the step,
+  /// sum_i F_i (N, N m), and the field's work over the step, sum over CPs of a (old + new) / 2 . B q
+  /// = q . sum_i (F_i before + F_i after) / 2 (J).
+  struct FieldStep {
+    Generalised resultant;
+    double work;
+  };
+  /// Advances the field of a contact by the step dt (s) under the generalised elongation increment q, given
+  /// gq = G q (contact_stiffness); no change when dt <= 0 (no time passes).
+  ///
+  /// In vectors of four lanes, a branch in two. Inlined, so that q and the sums stay in registers: a vector read
+  /// back from scalar stores, or scalars from a vector store, waits for the stores to complete (no store
+  /// forwarding).
+  [[gnu::always_inline]] FieldStep advance_field(ContactField& f, const Generalised& q, const Generalised& gq,
+                                                 double dt) const noexcept {
+    const Quad g0 = {gq[0], gq[1], gq[2], gq[3]}, g1 = {gq[4], gq[5], 0.0, 0.0};
+    Quad b0 = {}, b1 = {}, a0 = {}, a1 = {};
+    for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
+      Quad f0, f1;
+      std::memcpy(&f0, f[i].data(), sizeof f0);
+      std::memcpy(&f1, f[i].data() + 4, sizeof f1);
+      b0 += f0;
+      b1 += f1;
+      if (dt > 0.0) {
+        f0 = f0 * decay_[i] + gain_[i] * g0;
+        f1 = f1 * decay_[i] + gain_[i] * g1;
+        std::memcpy(f[i].data(), &f0, sizeof f0);
+        std::memcpy(f[i].data() + 4, &f1, sizeof f1);
       }
+      a0 += f0;
+      a1 += f1;
+    }
+    const Quad q0 = {q[0], q[1], q[2], q[3]}, q1 = {q[4], q[5], 0.0, 0.0};
+    const Quad w = (b0 + a0) * q0 + (b1 + a1) * q1;
+    return {{a0[0], a0[1], a0[2], a0[3], a1[0], a1[1]}, 0.5 * ((w[0] + w[1]) + (w[2] + w[3]))};
   }
   /// K B(x1, x2) h: the stresses (Pa; normal, shear 1, shear 2) of a field value h at a CP.
   static constexpr std::array<double, 3> field_stress(const Generalised& h, double kn, double ks, double x1, double x2) noexcept {
     return {kn * (h[0] + x2 * h[4] - x1 * h[5]), ks * (h[1] - x2 * h[3]), ks * (h[2] + x1 * h[3])};
   }
-  /// sum_CPs a B^T K B q: the generalised force (N, N m) of the stresses K B q over a contact whose CPs have the
-  /// area moments m = (sum a, sum a x1, sum a x2, sum a x1^2, sum a x2^2, sum a x1 x2). The work of the field over
-  /// a step with every CP active is (H_before + H_after) / 2 . contact_stiffness(q).
+  /// G q = sum_CPs a B^T K B q: the generalised force (N, N m) of the stresses K B q over a contact whose CPs have
+  /// the area moments m = (sum a, sum a x1, sum a x2, sum a x1^2, sum a x2^2, sum a x1 x2).
   static constexpr Generalised contact_stiffness(const std::array<double, 6>& m, double kn, double ks, const Generalised& q) noexcept {
     return {kn * (m[0] * q[0] + m[2] * q[4] - m[1] * q[5]),
             ks * (m[0] * q[1] - m[2] * q[3]),
@@ -310,8 +334,10 @@ struct Maxwell {
             kn * (m[2] * q[0] + m[4] * q[4] - m[5] * q[5]),
             kn * (m[3] * q[5] - m[1] * q[0] - m[5] * q[4])};
   }
-  /// The per-CP branch stresses the field stands for at (x1, x2): s[direction][branch].
-  std::array<ContactState, 3> field_branch_stresses(const ContactField& f, double kn, double ks, double x1, double x2) const noexcept {
+  /// The per-CP branch stresses K B(x1, x2) h_i at (x1, x2) of a field in elongation form (h_i, one per branch):
+  /// s[direction][branch].
+  std::array<ContactState, 3> field_branch_stresses(const std::array<Generalised, static_cast<std::size_t>(N)>& f, double kn,
+                                                    double ks, double x1, double x2) const noexcept {
     std::array<ContactState, 3> s{};
     for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
       const auto branch = field_stress(f[i], kn, ks, x1, x2);
@@ -328,6 +354,10 @@ struct Maxwell {
   }
 
  private:
+  // Four doubles in one vector (GCC's and Clang's vector extension): an AVX register with -mavx, else two SSE2
+  // registers.
+  using Quad = double __attribute__((vector_size(32)));
+
   // The kernel of element_stress_tile, on restrict parameters: GCC honours restrict on parameters, and without it
   // the alias checks between the tile and the increments exceed its limit and the loop stays scalar. Components
   // outermost and lanes innermost, with the branches unrolled inside: the tile is then read and written in address

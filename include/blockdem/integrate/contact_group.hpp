@@ -6,9 +6,14 @@
 // map of the CP's plane coordinates; the resultant force and moments. Per CP remain two plane coordinates, the
 // area, the law's history, the damping policy's spring state and the traction.
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <tuple>
 #include <vector>
+
+#include <Eigen/Eigenvalues>
 
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/core/types.hpp"
@@ -42,6 +47,7 @@ template <class Damping>
 struct ContactFieldOf {
   using type = damping::NoState;
   using sum = damping::NoState;
+  using step = damping::NoState;
   static constexpr bool present = false;
 };
 template <class Damping>
@@ -49,6 +55,7 @@ template <class Damping>
 struct ContactFieldOf<Damping> {
   using type = typename Damping::ContactField;
   using sum = typename Damping::Generalised;
+  using step = typename Damping::FieldStep;
   static constexpr bool present = true;
 };
 }  // namespace detail
@@ -74,12 +81,13 @@ struct ContactGroup {
   // field[c] and its CPs' spring_state is unused; once a CP has released its branches, the CPs' spring_state.
   static constexpr bool has_field = detail::ContactFieldOf<Damping>::present;
   using Field = typename detail::ContactFieldOf<Damping>::type;
-  using FieldSum = typename detail::ContactFieldOf<Damping>::sum;  // sum over the branches of a field
+  using FieldSum = typename detail::ContactFieldOf<Damping>::sum;    // sum over the branches of a field
+  using FieldStep = typename detail::ContactFieldOf<Damping>::step;  // what advancing a field gives
   std::vector<Field> field;
   std::vector<std::uint8_t> field_form;
   std::vector<double> field_viscous;  // J, the viscous work of the branches while in the field form, accumulated
   // The CPs' area moments sum a, sum a x1, sum a x2, sum a x1^2, sum a x2^2, sum a x1 x2 (m^2, m^3, m^4): the
-  // contact's stiffness on its generalised elongation, from which the field's work per step follows (complete()).
+  // contact's stiffness G on its generalised elongation (complete()).
   std::vector<std::array<double, 6>> area_moments;
 
   // Per contact point.
@@ -87,7 +95,9 @@ struct ContactGroup {
   std::vector<double> area;              // m^2
   std::vector<History> history;
   std::vector<SpringState> spring_state;
-  std::vector<Traction> traction;        // Pa, on B: joint law plus damping, in the contact frame
+  // Pa, on B, in the contact frame: joint law plus damping, except the branch field of a contact in the field form,
+  // which the contact pass adds to the contact's resultant only (traction_at() adds it at the CP).
+  std::vector<Traction> traction;
   std::vector<double> slip_dissipation;     // J, accumulated
   std::vector<double> viscous_dissipation;  // J, accumulated
 
@@ -100,7 +110,8 @@ struct ContactGroup {
 
   void clear() { *this = ContactGroup{}; }
 
-  /// Opens contact c (call before adding its CPs).
+  /// Opens contact c (call before adding its CPs). A branch field f is given in elongation form (h_i, see
+  /// field_elongations); complete() turns it into the force form the contact pass advances.
   void begin_contact(std::uint32_t a, std::uint32_t b, std::uint16_t p, const Vec3& origin, const Vec3& normal,
                      const Vec3& tangent, bool in_field_form = false, const Field& f = Field{}, double viscous = 0.0) {
     if constexpr (has_field) {
@@ -121,15 +132,71 @@ struct ContactGroup {
     moment.push_back(Vec3::Zero());
   }
 
+  /// The branch field of contact c in elongation form: for each branch an h_i with G h_i = F_i (the field keeps
+  /// F_i, damping::Maxwell::ContactField), G the contact's stiffness from its area moments. G is singular when the
+  /// CPs do not span the plane (two CPs on a line, one CP); h_i is then the solution of least norm, and B h_i, the
+  /// elongation at each CP of the contact, is the same for every solution.
+  auto field_elongations(std::size_t c) const {
+    using Generalised = typename Damping::Generalised;
+    using Matrix6 = Eigen::Matrix<double, 6, 6>;
+    const auto& p = properties[property[c]];
+    const double kn = Law::normal_stiffness(p), ks = Law::shear_stiffness(p);
+    Matrix6 stiffness;
+    for (int j = 0; j < 6; ++j) {
+      Generalised unit{};
+      unit[static_cast<std::size_t>(j)] = 1.0;
+      const auto column = Damping::contact_stiffness(area_moments[c], kn, ks, unit);
+      for (int i = 0; i < 6; ++i) stiffness(i, j) = column[static_cast<std::size_t>(i)];
+    }
+    // G mixes N/m (force per elongation) with N m (moment per rotation): scaled by the contact's size L so that
+    // its eigenvalues compare, G' = S G S with S = diag(1, 1, 1, 1/L, 1/L, 1/L), L^2 = (sum a x^2) / (sum a).
+    const auto& m = area_moments[c];
+    const double size = std::sqrt(std::max((m[3] + m[4]) / std::max(m[0], 1e-300), 1e-300));
+    Eigen::Matrix<double, 6, 1> scale;
+    scale << 1, 1, 1, 1 / size, 1 / size, 1 / size;
+    const Matrix6 scaled = scale.asDiagonal() * stiffness * scale.asDiagonal();
+    const Eigen::SelfAdjointEigenSolver<Matrix6> eigen(scaled);
+    const auto& values = eigen.eigenvalues();
+    const double cut = 1e-10 * values.cwiseAbs().maxCoeff();
+    Eigen::Matrix<double, 6, 1> inverse;
+    for (int i = 0; i < 6; ++i) inverse[i] = values[i] > cut ? 1.0 / values[i] : 0.0;
+    const Matrix6 pseudo_inverse =
+        scale.asDiagonal() * eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose() * scale.asDiagonal();
+    std::array<Generalised, std::tuple_size_v<Field>> h{};
+    for (std::size_t b = 0; b < h.size(); ++b) {
+      Eigen::Matrix<double, 6, 1> branch_force;
+      for (int i = 0; i < 6; ++i) branch_force[i] = field[c][b][static_cast<std::size_t>(i)];
+      const Eigen::Matrix<double, 6, 1> e = pseudo_inverse * branch_force;
+      for (int i = 0; i < 6; ++i) h[b][static_cast<std::size_t>(i)] = e[i];
+    }
+    return h;
+  }
+
   /// The branch state of CP k of contact c, whichever form holds it.
   SpringState spring_at(const Damping& damping, std::size_t c, std::size_t k) const {
     if constexpr (has_field) {
       if (field_form[c]) {
         const auto& p = properties[property[c]];
-        return damping.field_branch_stresses(field[c], Law::normal_stiffness(p), Law::shear_stiffness(p), s1[k], s2[k]);
+        return damping.field_branch_stresses(field_elongations(c), Law::normal_stiffness(p), Law::shear_stiffness(p), s1[k], s2[k]);
       }
     }
     return spring_state[k];
+  }
+
+  /// The traction (Pa) of CP k of contact c: joint law plus damping, whichever form holds the branch state.
+  Traction traction_at(std::size_t c, std::size_t k) const {
+    Traction t = traction[k];
+    if constexpr (has_field) {
+      const auto& p = properties[property[c]];
+      if (field_form[c] && Law::damping_active(p, history[k])) {
+        typename Damping::Generalised sum{};
+        for (const auto& h : field_elongations(c))
+          for (std::size_t j = 0; j < 6; ++j) sum[j] += h[j];
+        const auto v = Damping::field_stress(sum, Law::normal_stiffness(p), Law::shear_stiffness(p), s1[k], s2[k]);
+        for (std::size_t j = 0; j < 3; ++j) t[j] += v[j];
+      }
+    }
+    return t;
   }
 
   /// Adds a CP to the contact opened last.
@@ -156,6 +223,16 @@ struct ContactGroup {
           auto& m = area_moments[c];
           m = {m[0] + a, m[1] + a * u, m[2] + a * v, m[3] + a * u * u, m[4] + a * v * v, m[5] + a * u * v};
         }
+      for (std::size_t c = 0; c < contacts(); ++c) {
+        const auto& p = properties[property[c]];
+        for (auto& branch : field[c]) {
+          typename Damping::Generalised h;
+          std::copy_n(branch.begin(), h.size(), h.begin());
+          const auto branch_force = Damping::contact_stiffness(area_moments[c], Law::normal_stiffness(p), Law::shear_stiffness(p), h);
+          branch = {};
+          std::copy(branch_force.begin(), branch_force.end(), branch.begin());
+        }
+      }
     }
     first.assign(blocks + 1, 0);
     for (std::size_t c = 0; c < contacts(); ++c) {

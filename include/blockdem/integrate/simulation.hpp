@@ -25,6 +25,7 @@
 #include "blockdem/contact/elastic.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/rotation.hpp"
+#include "blockdem/core/triple.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
 #include "blockdem/integrate/contact_group.hpp"
@@ -301,7 +302,7 @@ class Simulation {
           v.position = fr.point(g.s1[k], g.s2[k]);
           v.normal = fr.n;
           v.area = g.area[k];
-          const auto& t = g.traction[k];
+          const auto t = g.traction_at(c, k);
           v.force = v.area * (t[0] * fr.n + t[1] * fr.t1 + t[2] * fr.t2);
           const auto& h = g.history[k];
           v.gap = h.gap;
@@ -604,12 +605,15 @@ class Simulation {
         carried_viscous += field_viscous;
       }
       if (o && in_field_form) {
+        // The old contact's field in elongation form, moved; begin_contact takes it so (complete() turns it back).
         const Vec3 shift = origin - old_frame.origin;
-        for (auto& h : field = o->field[oc]) {
+        const auto elongations = o->field_elongations(oc);
+        for (std::size_t i = 0; i < field.size(); ++i) {
+          const auto& h = elongations[i];
           const Vec3 e0 = h[0] * old_frame.n + h[1] * old_frame.t1 + h[2] * old_frame.t2;
           const Vec3 r = h[3] * old_frame.n + h[4] * old_frame.t1 + h[5] * old_frame.t2;
           const Vec3 e = e0 + r.cross(shift);  // the elongation of the same rigid relative motion at the new origin
-          h = {e.dot(n), e.dot(t1), e.dot(t2), r.dot(n), r.dot(t1), r.dot(t2)};
+          field[i] = {e.dot(n), e.dot(t1), e.dot(t2), r.dot(n), r.dot(t1), r.dot(t2)};
         }
       }
     }
@@ -700,9 +704,30 @@ class Simulation {
     to.complete(model_->bodies.size());
   }
 
-  /// a n + b t1 + c t2, written out: Eigen left this sum as an out-of-line call in the contact loop.
-  [[gnu::always_inline]] static Vec3 from_frame(const Vec3& n, const Vec3& t1, const Vec3& t2, double a, double b, double c) {
-    return Vec3(a * n[0] + b * t1[0] + c * t2[0], a * n[1] + b * t1[1] + c * t2[1], a * n[2] + b * t1[2] + c * t2[2]);
+  /// Adds the force (an, a1, a2) (N; normal, t1, t2) of a CP at plane coordinates (x1, x2) to its contact's
+  /// resultants in the contact frame: the force and the moment S x f about the origin, S = x1 t1 + x2 t2
+  /// (n x t1 = t2, t1 x t2 = n, t2 x n = t1).
+  [[gnu::always_inline]] static void add_cp_force(double x1, double x2, double an, double a1, double a2, double& fn,
+                                                  double& f1, double& f2, double& mn, double& m1, double& m2) {
+    fn += an;
+    f1 += a1;
+    f2 += a2;
+    mn += x1 * a2 - x2 * a1;
+    m1 += x2 * an;
+    m2 -= x1 * an;
+  }
+
+  /// Adds a generalised force (N, N m: the force along n, t1, t2 and the moment about the origin along n, t1, t2)
+  /// to a contact's resultants.
+  template <class R>
+  [[gnu::always_inline]] static void add_resultant(const R& r, double& fn, double& f1, double& f2, double& mn, double& m1,
+                                                   double& m2) {
+    fn += r[0];
+    f1 += r[1];
+    f2 += r[2];
+    mn += r[3];
+    m1 += r[4];
+    m2 += r[5];
   }
 
   /// The fused contact loop of one law. Per contact: the frame and the relative motion of the two blocks, reduced
@@ -738,8 +763,8 @@ class Simulation {
     double* __restrict const viscous_dissipation = g.viscous_dissipation.data();
     auto* __restrict const field = g.field.data();
     double* __restrict const field_viscous = g.field_viscous.data();
-    const auto* __restrict const area_moments = g.area_moments.data();
     std::uint8_t* __restrict const field_form = g.field_form.data();
+    const auto* __restrict const area_moments = g.area_moments.data();
     const auto count = static_cast<std::ptrdiff_t>(g.contacts());
     const Damping& damping = damping_;
     const double h = 0.5 * increment_dt;
@@ -749,25 +774,25 @@ class Simulation {
       const std::uint32_t a = body_a[c];
       const std::uint32_t bb = body_b[c];
       const Mat3& ra = rotation[a];
-      const Vec3 n = rotate(ra, normal_local[c]);
-      const Vec3 t1 = rotate(ra, tangent_local[c]);
-      const Vec3 t2 = n.cross(t1);
-      const Vec3 arm_a = rotate(ra, origin_local[c]);           // origin - x_A
-      const Vec3 arm_b = position[a] + arm_a - position[bb];    // origin - x_B
+      const Triple n = turn(ra, normal_local[c]);
+      const Triple t1 = turn(ra, tangent_local[c]);
+      const Triple t2 = n.cross(t1);
+      const Triple arm_a = turn(ra, origin_local[c]);                                // origin - x_A
+      const Triple arm_b = Triple::of(position[a]) + arm_a - Triple::of(position[bb]);  // origin - x_B
       // The last move (velocities v(n-1/2)) is measured half a move back, at its middle, so that the same move
       // run backwards gives exactly the opposite increment (to third order): A turned back by h w_A (h = dt/2),
       // both centroids moved back by h v. The CP at origin + S, S = s1 t1 + s2 t2 fixed in A, then moves by
       // du = dt (u + W x S_mid), W = w_B - w_A, read in the mid-step frame (n, t1, t2)_mid = (I - h [w_A]x)(...).
       // In that frame W x S has the components (s2 W_1 - s1 W_2, -s2 W_n, s1 W_n): per CP the increment is
       // du0 plus four products.
-      const Vec3 wa = omega[a], wb = omega[bb];
-      const Vec3 dv = velocity[bb] - velocity[a];
-      const Vec3 wa_arm_a = wa.cross(arm_a);
-      const Vec3 u = increment_dt * (dv + wb.cross(arm_b + h * (dv - wa_arm_a)) - wa.cross(arm_a - h * wa_arm_a));
-      const Vec3 w = increment_dt * (wb - wa);
-      const Vec3 n_mid = n - h * wa.cross(n);
-      const Vec3 t1_mid = t1 - h * wa.cross(t1);
-      const Vec3 t2_mid = t2 - h * wa.cross(t2);
+      const Triple wa = Triple::of(omega[a]), wb = Triple::of(omega[bb]);
+      const Triple dv = Triple::of(velocity[bb]) - Triple::of(velocity[a]);
+      const Triple wa_arm_a = wa.cross(arm_a);
+      const Triple u = increment_dt * (dv + wb.cross(arm_b + h * (dv - wa_arm_a)) - wa.cross(arm_a - h * wa_arm_a));
+      const Triple w = increment_dt * (wb - wa);
+      const Triple n_mid = n - h * wa.cross(n);
+      const Triple t1_mid = t1 - h * wa.cross(t1);
+      const Triple t2_mid = t2 - h * wa.cross(t2);
       const double du0_n = u.dot(n_mid), du0_1 = u.dot(t1_mid), du0_2 = u.dot(t2_mid);
       const double w_n = w.dot(n_mid), w_1 = w.dot(t1_mid), w_2 = w.dot(t2_mid);
       const auto& p = properties[property[c]];
@@ -776,43 +801,37 @@ class Simulation {
       // Resultants in the contact frame: force (normal, t1, t2) and moment about the origin.
       double fn = 0, f1 = 0, f2 = 0, mn = 0, m1 = 0, m2 = 0;
       const std::uint32_t begin = first_point[c], end = first_point[c + 1];
-      // Maxwell branches in the contact-field form (damping::Maxwell::ContactField): advanced once for the contact
-      // under its generalised elongation increment q = (-du0, -w), read at each CP; their work over the step,
-      // sum over CPs of a (old + new) / 2 . e, is (H_before + H_after) / 2 . sum a B^T K B q for the whole contact.
-      [[maybe_unused]] bool in_field = false, released = false;
-      [[maybe_unused]] typename G::FieldSum before{}, after{}, q{};
+      // Maxwell branches in the contact-field form (damping::Maxwell::ContactField) are not evaluated per CP: the
+      // field keeps each branch's generalised force on the contact, F_i = G h_i, advanced once per step under the
+      // contact's generalised elongation increment q = (-du0, -w) through G q (G the contact's stiffness from its
+      // area moments); the field's force on the contact is sum_i F_i, added to the resultants after the CP loop,
+      // and its tractions at the CPs are evaluated only when asked for (ContactGroup::traction_at). It goes first,
+      // so that its chain of dependent operations overlaps with the CP loop, which runs the law only. A contact
+      // whose CPs keep their own branch states (field_form 0, after a CP released its branches) adds them in a
+      // second CP loop below. Either way the CP loop has no branch on the form.
+      [[maybe_unused]] const bool in_field = G::has_field && field_form[c] != 0;
+      [[maybe_unused]] typename G::FieldSum q{};
+      [[maybe_unused]] typename G::FieldStep field_step{};
       if constexpr (G::has_field) {
-        in_field = field_form[c] != 0;
         if (in_field) {
           q = {-du0_n, -du0_1, -du0_2, -w_n, -w_1, -w_2};
-          damping.advance_field(field[c], q, increment_dt, before, after);
-          const auto gq = Damping::contact_stiffness(area_moments[c], kn, ks, q);
-          double work = 0.0;
-          for (std::size_t j = 0; j < 6; ++j) work += (before[j] + after[j]) * gq[j];
-          field_viscous[c] += 0.5 * work;
+          field_step = damping.advance_field(field[c], q, Damping::contact_stiffness(area_moments[c], kn, ks, q), increment_dt);
         }
       }
+      [[maybe_unused]] bool inactive = false;
       for (std::uint32_t k = begin; k < end; ++k) {
         const double x1 = plane_1[k], x2 = plane_2[k];
         const double du_n = du0_n + x2 * w_1 - x1 * w_2;
         const contact::Shear du_s{du0_1 - x2 * w_n, du0_2 + x1 * w_n};
         const contact::Response r = L::update(p, history[k], du_n, du_s);
         const bool active = L::damping_active(p, history[k]);
+        const double area = area_of[k];
         double dissipated = 0.0;
         // Spring elongations in the sense of the stresses: closing the gap compresses, shear stress opposes du_s.
-        const std::array<double, 3> e{-du_n, -du_s[0], -du_s[1]};
+        [[maybe_unused]] const std::array<double, 3> e{-du_n, -du_s[0], -du_s[1]};
         std::array<double, 3> v{0.0, 0.0, 0.0};  // viscous stresses, Pa
         if constexpr (G::has_field) {
-          if (in_field) {
-            // A CP that releases its branches: new stress 0 (its share of the work is corrected below). (With no
-            // time passing, an inactive CP's branches only stop acting: nothing is released.)
-            const double on = active ? 1.0 : 0.0;
-            released = released || !active;
-            const auto now = Damping::field_stress(after, kn, ks, x1, x2);
-            v = {on * now[0], on * now[1], on * now[2]};
-          } else {
-            v = damping.spring_stresses(spring_state[k], kn, ks, e, increment_dt, active, dissipated);
-          }
+          inactive = inactive || !active;
         } else if constexpr (requires { damping.spring_stresses(spring_state[k], kn, ks, e, increment_dt, active, dissipated); }) {
           v = damping.spring_stresses(spring_state[k], kn, ks, e, increment_dt, active, dissipated);
         } else {
@@ -823,44 +842,63 @@ class Simulation {
         }
         const double sn = r.normal_stress + v[0], s1 = r.shear_stress[0] + v[1], s2 = r.shear_stress[1] + v[2];
         traction[k] = {sn, s1, s2};
-        const double area = area_of[k];
-        const double an = area * sn, a1 = area * s1, a2 = area * s2;
-        fn += an;
-        f1 += a1;
-        f2 += a2;
-        // S x f with S = x1 t1 + x2 t2, f = an n + a1 t1 + a2 t2 (n x t1 = t2, t1 x t2 = n, t2 x n = t1).
-        mn += x1 * a2 - x2 * a1;
-        m1 += x2 * an;
-        m2 -= x1 * an;
+        add_cp_force(x1, x2, area * sn, area * s1, area * s2, fn, f1, f2, mn, m1, m2);
         // Only what can be non-zero is stored: a law or a policy that never dissipates costs no memory traffic here.
         if constexpr (!std::is_same_v<L, contact::Elastic>) slip_dissipation[k] += area * r.dissipated;
-        if constexpr (!std::is_same_v<typename Damping::ContactState, damping::NoState>)
-          if (!in_field) viscous_dissipation[k] += area * dissipated;
+        if constexpr (!G::has_field && !std::is_same_v<typename Damping::ContactState, damping::NoState>)
+          viscous_dissipation[k] += area * dissipated;
       }
       if constexpr (G::has_field) {
-        if (released && increment_dt > 0.0) [[unlikely]] {
-          // A CP failed or opened: from now on every CP of the contact keeps its own branch states, from the
-          // field's values; those of the released CPs are zero, and the work counted for them above is their old
-          // stress only.
+        if (in_field) {
+          add_resultant(field_step.resultant, fn, f1, f2, mn, m1, m2);
+          double field_work = field_step.work;
+          if (inactive) [[unlikely]] {
+            // A CP that failed or opened releases its branches: its new stress is 0, and its work over the step
+            // is that of its old stress only. (With no time passing, its branches only stop acting: nothing is
+            // released.) From the next step on every CP of the contact keeps its own branch states, from the
+            // field's values; those of the released CPs are zero.
+            const auto elongations = g.field_elongations(c);
+            typename G::FieldSum after{};
+            for (const auto& branch : elongations)
+              for (std::size_t j = 0; j < 6; ++j) after[j] += branch[j];
+            for (std::uint32_t k = begin; k < end; ++k) {
+              if (L::damping_active(p, history[k])) continue;
+              const double x1 = plane_1[k], x2 = plane_2[k], area = area_of[k];
+              const auto now = Damping::field_stress(after, kn, ks, x1, x2);
+              const auto e = Damping::field_stress(q, 1.0, 1.0, x1, x2);  // B q: the CP's elongations
+              field_work -= 0.5 * area * (now[0] * e[0] + now[1] * e[1] + now[2] * e[2]);
+              add_cp_force(x1, x2, -area * now[0], -area * now[1], -area * now[2], fn, f1, f2, mn, m1, m2);
+            }
+            if (increment_dt > 0.0) {
+              for (std::uint32_t k = begin; k < end; ++k)
+                spring_state[k] = L::damping_active(p, history[k])
+                                      ? damping.field_branch_stresses(elongations, kn, ks, plane_1[k], plane_2[k])
+                                      : typename G::SpringState{};
+              field_form[c] = 0;
+            }
+          }
+          field_viscous[c] += field_work;
+        } else {
+          // The CPs' own branch states, after the law has updated every CP's history.
           for (std::uint32_t k = begin; k < end; ++k) {
             const double x1 = plane_1[k], x2 = plane_2[k];
-            if (L::damping_active(p, history[k])) {
-              spring_state[k] = damping.field_branch_stresses(field[c], kn, ks, x1, x2);
-              continue;
-            }
-            spring_state[k] = typename G::SpringState{};
-            const auto now = Damping::field_stress(after, kn, ks, x1, x2);
-            const auto e = Damping::field_stress(q, 1.0, 1.0, x1, x2);  // B q: the CP's elongations
-            field_viscous[c] -= 0.5 * area_of[k] * (now[0] * e[0] + now[1] * e[1] + now[2] * e[2]);
+            const std::array<double, 3> e{-(du0_n + x2 * w_1 - x1 * w_2), -(du0_1 - x2 * w_n), -(du0_2 + x1 * w_n)};
+            double dissipated = 0.0;
+            const auto v = damping.spring_stresses(spring_state[k], kn, ks, e, increment_dt,
+                                                   L::damping_active(p, history[k]), dissipated);
+            auto& t = traction[k];
+            t = {t[0] + v[0], t[1] + v[1], t[2] + v[2]};
+            const double area = area_of[k];
+            add_cp_force(x1, x2, area * v[0], area * v[1], area * v[2], fn, f1, f2, mn, m1, m2);
+            viscous_dissipation[k] += area * dissipated;
           }
-          field_form[c] = 0;
         }
       }
-      const Vec3 f = from_frame(n, t1, t2, fn, f1, f2);
-      const Vec3 m_origin = from_frame(n, t1, t2, mn, m1, m2);
-      contact_force[c] = f;
-      contact_moment[2 * c] = -(arm_a.cross(f) + m_origin);
-      contact_moment[2 * c + 1] = arm_b.cross(f) + m_origin;
+      const Triple f = combine(n, t1, t2, fn, f1, f2);
+      const Triple m_origin = combine(n, t1, t2, mn, m1, m2);
+      contact_force[c] = f.vec();
+      contact_moment[2 * c] = (-(arm_a.cross(f) + m_origin)).vec();
+      contact_moment[2 * c + 1] = (arm_b.cross(f) + m_origin).vec();
     }
   }
 
