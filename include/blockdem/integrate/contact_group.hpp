@@ -134,8 +134,9 @@ struct ContactGroup {
 
   /// The branch field of contact c in elongation form: for each branch an h_i with G h_i = F_i (the field keeps
   /// F_i, damping::Maxwell::ContactField), G the contact's stiffness from its area moments. G is singular when the
-  /// CPs do not span the plane (two CPs on a line, one CP); h_i is then the solution of least norm, and B h_i, the
-  /// elongation at each CP of the contact, is the same for every solution.
+  /// CPs do not span the plane (two CPs on a line, one CP); h_i is then the solution of least norm (rotations
+  /// scaled by the contact's size L, below), and B h_i, the elongation at each CP of the contact, is the same for
+  /// every solution.
   auto field_elongations(std::size_t c) const {
     using Generalised = typename Damping::Generalised;
     using Matrix6 = Eigen::Matrix<double, 6, 6>;
