@@ -102,11 +102,41 @@ TEST_CASE("maxwell: the contact field gives the resultant and the work of every 
                          MaxwellBranch::from_peak(0.02, 2 * pi * 40.0)});
   const double dt = 1e-4, kn = 1e10, ks = 4e9;
   m.prepare(dt);
-  const std::array<std::array<double, 3>, 4> points{{{0.12, 0.05, 0.01}, {-0.12, 0.05, 0.02}, {-0.12, -0.05, 0.015}, {0.3, -0.2, 0.005}}};
-  std::array<double, 6> moments{};
-  for (const auto& [x1, x2, a] : points)
-    moments = {moments[0] + a, moments[1] + a * x1, moments[2] + a * x2, moments[3] + a * x1 * x1, moments[4] + a * x2 * x2,
-               moments[5] + a * x1 * x2};
+  // Four CPs of unequal areas, in the frame of their areas (origin at the centroid, t1 along a principal axis),
+  // where G is diagonal: turned and shifted there from an arbitrary placement.
+  std::array<std::array<double, 3>, 4> points{{{0.12, 0.05, 0.01}, {-0.12, 0.05, 0.02}, {-0.12, -0.05, 0.015}, {0.3, -0.2, 0.005}}};
+  {
+    double a0 = 0, c1 = 0, c2 = 0;
+    for (const auto& [x1, x2, a] : points) {
+      a0 += a;
+      c1 += a * x1;
+      c2 += a * x2;
+    }
+    c1 /= a0;
+    c2 /= a0;
+    double i11 = 0, i22 = 0, i12 = 0;
+    for (const auto& [x1, x2, a] : points) {
+      i11 += a * (x1 - c1) * (x1 - c1);
+      i22 += a * (x2 - c2) * (x2 - c2);
+      i12 += a * (x1 - c1) * (x2 - c2);
+    }
+    const double turn = 0.5 * std::atan2(2 * i12, i11 - i22);
+    for (auto& [x1, x2, a] : points) {
+      const double u = x1 - c1, v = x2 - c2;
+      x1 = std::cos(turn) * u + std::sin(turn) * v;
+      x2 = -std::sin(turn) * u + std::cos(turn) * v;
+    }
+  }
+  double area = 0, i1 = 0, i2 = 0, product = 0;
+  for (const auto& [x1, x2, a] : points) {
+    area += a;
+    i1 += a * x1 * x1;
+    i2 += a * x2 * x2;
+    product += a * x1 * x2;
+  }
+  REQUIRE(std::abs(product) < 1e-15 * (i1 + i2));
+  REQUIRE(std::abs(i1 - i2) > 0.1 * (i1 + i2));  // not a symmetric layout
+  const auto stiffness = damping::Maxwell<3>::contact_stiffness(area, i1, i2, kn, ks);
   std::array<std::array<damping::Maxwell<3>::ContactState, 3>, 4> own{};
   damping::Maxwell<3>::ContactField field{};
   double own_work = 0, field_work = 0;
@@ -117,7 +147,7 @@ TEST_CASE("maxwell: the contact field gives the resultant and the work of every 
     const damping::Maxwell<3>::Generalised q{1e-7 * std::sin(0.1 * t), -2e-7 * std::cos(0.07 * t), 3e-8 * std::sin(0.3 * t),
                                              4e-7 * std::cos(0.05 * t), -1e-6 * std::sin(0.02 * t), 5e-7 * std::sin(0.11 * t)};
     const double h = step == 0 ? 0.0 : dt;
-    const auto got = m.advance_field(field, q, damping::Maxwell<3>::contact_stiffness(moments, kn, ks, q), h);
+    const auto got = m.advance_field(field, q, stiffness, h);
     field_work += got.work;
     damping::Maxwell<3>::Generalised want{};  // sum a B^T s over the CPs
     for (std::size_t p = 0; p < points.size(); ++p) {

@@ -323,13 +323,34 @@ TEST_CASE("simulation: Maxwell branches in the contact-field form give the motio
 TEST_CASE("contact group: a Maxwell field kept as forces gives back the elongations at the CPs, also when G is singular") {
   // Reference: the CP elongations B(x1, x2) h of the field given to begin_contact. complete() keeps F = G h; the
   // elongations recovered from F must give the same B h at every CP of the contact: with four CPs (G regular, h
-  // itself), with two (G singular: a turn about the line through them moves neither) and with one.
+  // itself), with two (G singular: a turn about the line through them moves neither) and with one. The CPs are
+  // placed in the frame of their areas (centroid, principal axes), as the simulation places them.
   using Group = ContactGroup<contact::Elastic, damping::Maxwell<3>>;
-  const std::vector<std::vector<std::array<double, 3>>> layouts{
+  std::vector<std::vector<std::array<double, 3>>> layouts{
       {{0.12, 0.05, 0.01}, {-0.12, 0.05, 0.02}, {-0.12, -0.05, 0.015}, {0.3, -0.2, 0.005}},
       {{0.12, 0.05, 0.01}, {-0.2, -0.03, 0.02}},
       {{0.1, -0.04, 0.01}}};
-  for (const auto& points : layouts) {
+  for (auto& points : layouts) {
+    double a0 = 0, c1 = 0, c2 = 0;
+    for (const auto& [x1, x2, a] : points) {
+      a0 += a;
+      c1 += a * x1;
+      c2 += a * x2;
+    }
+    c1 /= a0;
+    c2 /= a0;
+    double i11 = 0, i22 = 0, i12 = 0;
+    for (const auto& [x1, x2, a] : points) {
+      i11 += a * (x1 - c1) * (x1 - c1);
+      i22 += a * (x2 - c2) * (x2 - c2);
+      i12 += a * (x1 - c1) * (x2 - c2);
+    }
+    const double turn = principal_turn(i11, i22, i12);
+    for (auto& [x1, x2, a] : points) {
+      const double u = x1 - c1, v = x2 - c2;
+      x1 = std::cos(turn) * u + std::sin(turn) * v;
+      x2 = -std::sin(turn) * u + std::cos(turn) * v;
+    }
     Group g;
     g.properties.push_back(contact::Elastic::Parameters(1e10, 4e9));
     Group::Field field{};
@@ -348,4 +369,30 @@ TEST_CASE("contact group: a Maxwell field kept as forces gives back the elongati
         for (std::size_t j = 0; j < 3; ++j) CHECK(got[j] == test::approx(want[j]).scale(1e-6).epsilon(1e-9));
       }
   }
+}
+
+TEST_CASE("contact group: a Maxwell field refuses CPs whose origin is not their area centroid or t1 not a principal axis") {
+  // The field's stiffness is diagonal only in the frame of the CPs' areas: any other frame is an error naming the
+  // contact, not a silently wrong force.
+  using Group = ContactGroup<contact::Elastic, damping::Maxwell<3>>;
+  const std::vector<std::vector<std::array<double, 3>>> layouts{
+      {{0.2, 0.1, 0.01}, {-0.1, 0.1, 0.01}},                                          // centroid at x2 = 0.1
+      {{0.1, 0.1, 0.01}, {-0.1, -0.1, 0.01}},                                         // centred, on a diagonal
+      {{0.1, 0.05, 0.01}, {-0.1, 0.05, 0.01}, {-0.1, -0.05, 0.01}, {0.1, -0.05, 0.01}}};  // centred and principal
+  for (std::size_t l = 0; l < layouts.size(); ++l) {
+    Group g;
+    g.properties.push_back(contact::Elastic::Parameters(1e10, 4e9));
+    g.begin_contact(3, 7, 0, Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX(), true);
+    for (const auto& [x1, x2, a] : layouts[l]) g.add_point(x1, x2, a, {}, {}, 0.0, 0.0);
+    if (l < 2)
+      CHECK_THROWS_WITH_AS(g.complete(8), doctest::Contains("contact 0 (blocks 3, 7)"), InvalidArgument);
+    else
+      CHECK_NOTHROW(g.complete(8));
+  }
+  // The same CPs in a group without a field: any frame.
+  ContactGroup<contact::Elastic, damping::MassProportional> plain;
+  plain.properties.push_back(contact::Elastic::Parameters(1e10, 4e9));
+  plain.begin_contact(3, 7, 0, Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX());
+  for (const auto& [x1, x2, a] : layouts[0]) plain.add_point(x1, x2, a, {}, {}, 0.0, 0.0);
+  CHECK_NOTHROW(plain.complete(8));
 }

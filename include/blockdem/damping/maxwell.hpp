@@ -272,14 +272,19 @@ struct Maxwell {
   // alpha_i tau_i (1 - e^(-dt/tau_i)) q / dt. Summed over the CPs (area a) they act on the contact with the
   // generalised force F_i = G h_i, G = sum a B^T K B (contact_stiffness), which follows the same update with G q
   // in place of q. The field keeps F_i: six numbers per branch and contact instead of three per branch and CP, per
-  // step one product G q, and the contact's force is sum_i F_i. The per-CP stresses K B h_i follow from any h_i
-  // with G h_i = F_i (ContactGroup::field_elongations): B h is the same for all of them at the contact's CPs. When
-  // a CP releases its branches (it fails or opens), the contact goes over to the per-CP state (spring_stresses),
-  // from the field's values at its CPs.
+  // step one product G q, and the contact's force is sum_i F_i. With the origin at the area centroid of the CPs and
+  // t1 along a principal axis of their areas (sum a x1 = sum a x2 = sum a x1 x2 = 0), as ContactGroup keeps every
+  // contact, G is diagonal and G q six products. The per-CP stresses K B h_i follow from h_i = G^+ F_i
+  // (ContactGroup::field_elongations), exact at the CPs also where G is singular. When a CP releases its branches
+  // (it fails or opens), the contact goes over to the per-CP state (spring_stresses), from the field's values at
+  // its CPs.
   using Generalised = std::array<double, 6>;  // e0_n, e0_1, e0_2 (m); r_n, r_1, r_2 (rad); or the forces (N, N m)
   // F_i, one per branch (N, N m; force along n, t1, t2, then moment about the origin along n, t1, t2), each followed
   // by two zeros: two whole vectors of four lanes.
   using ContactField = std::array<std::array<double, 8>, static_cast<std::size_t>(N)>;
+  /// The diagonal of a contact's stiffness G on its generalised elongation (contact_stiffness), followed by two
+  /// zeros like a branch of the field: N/m for the three elongations, N m for the three rotations.
+  using FieldStiffness = std::array<double, 8>;
   /// Contacts between rigid blocks start in the field form; false keeps every CP's own branch state from the start
   /// (the reference the field form is tested against).
   bool contact_field = true;
@@ -291,15 +296,19 @@ struct Maxwell {
     Generalised resultant;
     double work;
   };
-  /// Advances the field of a contact by the step dt (s) under the generalised elongation increment q, given
-  /// gq = G q (contact_stiffness); no change when dt <= 0 (no time passes).
+  /// Advances the field of a contact of stiffness diag(g) (contact_stiffness) by the step dt (s) under the
+  /// generalised elongation increment q; no change when dt <= 0 (no time passes).
   ///
   /// In vectors of four lanes, a branch in two. Inlined, so that q and the sums stay in registers: a vector read
   /// back from scalar stores, or scalars from a vector store, waits for the stores to complete (no store
   /// forwarding).
-  [[gnu::always_inline]] FieldStep advance_field(ContactField& f, const Generalised& q, const Generalised& gq,
+  [[gnu::always_inline]] FieldStep advance_field(ContactField& f, const Generalised& q, const FieldStiffness& g,
                                                  double dt) const noexcept {
-    const Quad g0 = {gq[0], gq[1], gq[2], gq[3]}, g1 = {gq[4], gq[5], 0.0, 0.0};
+    const Quad q0 = {q[0], q[1], q[2], q[3]}, q1 = {q[4], q[5], 0.0, 0.0};
+    Quad d0, d1;
+    std::memcpy(&d0, g.data(), sizeof d0);
+    std::memcpy(&d1, g.data() + 4, sizeof d1);
+    const Quad g0 = d0 * q0, g1 = d1 * q1;  // G q
     Quad b0 = {}, b1 = {}, a0 = {}, a1 = {};
     for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
       Quad f0, f1;
@@ -316,7 +325,6 @@ struct Maxwell {
       a0 += f0;
       a1 += f1;
     }
-    const Quad q0 = {q[0], q[1], q[2], q[3]}, q1 = {q[4], q[5], 0.0, 0.0};
     const Quad w = (b0 + a0) * q0 + (b1 + a1) * q1;
     return {{a0[0], a0[1], a0[2], a0[3], a1[0], a1[1]}, 0.5 * ((w[0] + w[1]) + (w[2] + w[3]))};
   }
@@ -324,18 +332,11 @@ struct Maxwell {
   static constexpr std::array<double, 3> field_stress(const Generalised& h, double kn, double ks, double x1, double x2) noexcept {
     return {kn * (h[0] + x2 * h[4] - x1 * h[5]), ks * (h[1] - x2 * h[3]), ks * (h[2] + x1 * h[3])};
   }
-  /// G q = sum_CPs a B^T K B q: the generalised force (N, N m) of the stresses K B q over a contact whose CPs have
-  /// the area moments m = (sum a, sum a x1, sum a x2, sum a x1^2, sum a x2^2, sum a x1 x2). Always inlined: called
-  /// out of line from the contact pass (as GCC chose in a program with many instantiations), it made every live
-  /// vector register spill around the call (Maxwell<3> 1.37 instead of 1.22 times MassProportional).
-  [[gnu::always_inline]] static constexpr Generalised contact_stiffness(const std::array<double, 6>& m, double kn, double ks,
-                                                                       const Generalised& q) noexcept {
-    return {kn * (m[0] * q[0] + m[2] * q[4] - m[1] * q[5]),
-            ks * (m[0] * q[1] - m[2] * q[3]),
-            ks * (m[0] * q[2] + m[1] * q[3]),
-            ks * (m[1] * q[2] - m[2] * q[1] + (m[3] + m[4]) * q[3]),
-            kn * (m[2] * q[0] + m[4] * q[4] - m[5] * q[5]),
-            kn * (m[3] * q[5] - m[1] * q[0] - m[5] * q[4])};
+  /// G = sum_CPs a B^T K B, the stiffness of a contact on its generalised elongation (N/m, N m), of which only the
+  /// diagonal is not zero when the origin is the area centroid of the CPs and t1 a principal axis of their areas:
+  /// diag(k_n A, k_s A, k_s A, k_s (I_1 + I_2), k_n I_2, k_n I_1), A = sum a, I_1 = sum a x1^2, I_2 = sum a x2^2.
+  static constexpr FieldStiffness contact_stiffness(double area, double i1, double i2, double kn, double ks) noexcept {
+    return {kn * area, ks * area, ks * area, ks * (i1 + i2), kn * i2, kn * i1, 0.0, 0.0};
   }
   /// The per-CP branch stresses K B(x1, x2) h_i at (x1, x2) of a field in elongation form (h_i, one per branch):
   /// s[direction][branch].

@@ -2,7 +2,8 @@
 // The contacts of one joint law, in struct-of-arrays storage. A contact is the interface between two blocks (one
 // common plane, as in 3DEC); its contact points (CPs, the sub-contacts) lie on that plane. What is common to the
 // CPs of a contact is stored and computed once per contact: the block pair, the joint parameters, the contact
-// frame (n, t1, t2) and its origin, fixed in block A; the relative motion of the two blocks, reduced to an affine
+// frame (n, t1, t2) and its origin, fixed in block A (the origin at the area centroid of the CPs, t1 along a
+// principal axis of their areas: principal_turn); the relative motion of the two blocks, reduced to an affine
 // map of the CP's plane coordinates; the resultant force and moments. Per CP remain two plane coordinates, the
 // area, the law's history, the damping policy's spring state and the traction.
 
@@ -10,12 +11,12 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <tuple>
 #include <vector>
 
-#include <Eigen/Eigenvalues>
-
 #include "blockdem/contact/concepts.hpp"
+#include "blockdem/core/error.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
 
@@ -41,6 +42,11 @@ void add_contact_point_energy(const Damping& damping, const typename Law::Parame
   viscous_total += viscous;
 }
 
+/// The turn theta (rad) of t1 about n, t1' = cos(theta) t1 + sin(theta) t2, that makes t1' a principal axis of the
+/// areas of a contact's CPs, given their second moments about the area centroid in the frame (t1, t2): i11 = sum a
+/// x1^2, i22 = sum a x2^2, i12 = sum a x1 x2 (m^4). Then sum a x1' x2' = 0: tan(2 theta) = 2 i12 / (i11 - i22).
+inline double principal_turn(double i11, double i22, double i12) { return 0.5 * std::atan2(2.0 * i12, i11 - i22); }
+
 namespace detail {
 /// The per-contact branch state of policies with a contact-field form (damping::Maxwell::ContactField), else none.
 template <class Damping>
@@ -48,6 +54,7 @@ struct ContactFieldOf {
   using type = damping::NoState;
   using sum = damping::NoState;
   using step = damping::NoState;
+  using stiffness = damping::NoState;
   static constexpr bool present = false;
 };
 template <class Damping>
@@ -56,6 +63,7 @@ struct ContactFieldOf<Damping> {
   using type = typename Damping::ContactField;
   using sum = typename Damping::Generalised;
   using step = typename Damping::FieldStep;
+  using stiffness = typename Damping::FieldStiffness;
   static constexpr bool present = true;
 };
 }  // namespace detail
@@ -86,9 +94,9 @@ struct ContactGroup {
   std::vector<Field> field;
   std::vector<std::uint8_t> field_form;
   std::vector<double> field_viscous;  // J, the viscous work of the branches while in the field form, accumulated
-  // The CPs' area moments sum a, sum a x1, sum a x2, sum a x1^2, sum a x2^2, sum a x1 x2 (m^2, m^3, m^4): the
-  // contact's stiffness G on its generalised elongation (complete()).
-  std::vector<std::array<double, 6>> area_moments;
+  // The diagonal of the contact's stiffness G on its generalised elongation, from the area moments of its CPs
+  // (complete(); diagonal because the frame is the CPs' principal one).
+  std::vector<typename detail::ContactFieldOf<Damping>::stiffness> field_stiffness;
 
   // Per contact point.
   std::vector<double> s1, s2;            // m, coordinates on the contact plane from the origin along t1, t2
@@ -132,44 +140,16 @@ struct ContactGroup {
     moment.push_back(Vec3::Zero());
   }
 
-  /// The branch field of contact c in elongation form: for each branch an h_i with G h_i = F_i (the field keeps
-  /// F_i, damping::Maxwell::ContactField), G the contact's stiffness from its area moments. G is singular when the
-  /// CPs do not span the plane (two CPs on a line, one CP); h_i is then the solution of least norm (rotations
-  /// scaled by the contact's size L, below), and B h_i, the elongation at each CP of the contact, is the same for
-  /// every solution.
+  /// The branch field of contact c in elongation form: for each branch h_i = G^+ F_i (the field keeps F_i = G h_i,
+  /// damping::Maxwell::ContactField), G = diag(g) the contact's stiffness. G is singular where the CPs do not span
+  /// the plane (a line of CPs has no moment of area about it, one CP none at all); that component of h_i is then 0,
+  /// and B h_i, the elongation at each CP, is that of the h_i given (a CP on the line does not move in a turn about
+  /// it).
   auto field_elongations(std::size_t c) const {
-    using Generalised = typename Damping::Generalised;
-    using Matrix6 = Eigen::Matrix<double, 6, 6>;
-    const auto& p = properties[property[c]];
-    const double kn = Law::normal_stiffness(p), ks = Law::shear_stiffness(p);
-    Matrix6 stiffness;
-    for (int j = 0; j < 6; ++j) {
-      Generalised unit{};
-      unit[static_cast<std::size_t>(j)] = 1.0;
-      const auto column = Damping::contact_stiffness(area_moments[c], kn, ks, unit);
-      for (int i = 0; i < 6; ++i) stiffness(i, j) = column[static_cast<std::size_t>(i)];
-    }
-    // G mixes N/m (force per elongation) with N m (moment per rotation): scaled by the contact's size L so that
-    // its eigenvalues compare, G' = S G S with S = diag(1, 1, 1, 1/L, 1/L, 1/L), L^2 = (sum a x^2) / (sum a).
-    const auto& m = area_moments[c];
-    const double size = std::sqrt(std::max((m[3] + m[4]) / std::max(m[0], 1e-300), 1e-300));
-    Eigen::Matrix<double, 6, 1> scale;
-    scale << 1, 1, 1, 1 / size, 1 / size, 1 / size;
-    const Matrix6 scaled = scale.asDiagonal() * stiffness * scale.asDiagonal();
-    const Eigen::SelfAdjointEigenSolver<Matrix6> eigen(scaled);
-    const auto& values = eigen.eigenvalues();
-    const double cut = 1e-10 * values.cwiseAbs().maxCoeff();
-    Eigen::Matrix<double, 6, 1> inverse;
-    for (int i = 0; i < 6; ++i) inverse[i] = values[i] > cut ? 1.0 / values[i] : 0.0;
-    const Matrix6 pseudo_inverse =
-        scale.asDiagonal() * eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose() * scale.asDiagonal();
-    std::array<Generalised, std::tuple_size_v<Field>> h{};
-    for (std::size_t b = 0; b < h.size(); ++b) {
-      Eigen::Matrix<double, 6, 1> branch_force;
-      for (int i = 0; i < 6; ++i) branch_force[i] = field[c][b][static_cast<std::size_t>(i)];
-      const Eigen::Matrix<double, 6, 1> e = pseudo_inverse * branch_force;
-      for (int i = 0; i < 6; ++i) h[b][static_cast<std::size_t>(i)] = e[i];
-    }
+    std::array<typename Damping::Generalised, std::tuple_size_v<Field>> h{};
+    const auto& g = field_stiffness[c];
+    for (std::size_t b = 0; b < h.size(); ++b)
+      for (std::size_t j = 0; j < 6; ++j) h[b][j] = g[j] > 0.0 ? field[c][b][j] / g[j] : 0.0;
     return h;
   }
 
@@ -214,25 +194,36 @@ struct ContactGroup {
   }
 
   /// Builds what follows from the contacts once they are all added: the gather lists for `blocks` blocks, in
-  /// increasing contact order so that sums are reproducible, and the area moments of each contact's CPs.
+  /// increasing contact order so that sums are reproducible, and for a branch field each contact's stiffness.
+  /// A branch field needs each contact's origin at the area centroid of its CPs and t1 along a principal axis of
+  /// their areas (InvalidArgument otherwise, naming the contact).
   void complete(std::size_t blocks) {
     if constexpr (has_field) {
-      area_moments.assign(contacts(), {});
-      for (std::size_t c = 0; c < contacts(); ++c)
+      field_stiffness.assign(contacts(), {});
+      for (std::size_t c = 0; c < contacts(); ++c) {
+        double a0 = 0, a1 = 0, a2 = 0, a11 = 0, a22 = 0, a12 = 0;  // m^2, m^3, m^3, m^4, m^4, m^4
         for (std::uint32_t k = first_point[c]; k < first_point[c + 1]; ++k) {
           const double a = area[k], u = s1[k], v = s2[k];
-          auto& m = area_moments[c];
-          m = {m[0] + a, m[1] + a * u, m[2] + a * v, m[3] + a * u * u, m[4] + a * v * v, m[5] + a * u * v};
+          a0 += a;
+          a1 += a * u;
+          a2 += a * v;
+          a11 += a * u * u;
+          a22 += a * v * v;
+          a12 += a * u * v;
         }
-      for (std::size_t c = 0; c < contacts(); ++c) {
+        // What is left of the first moments and the product of area is rounding: relative to the contact's size.
+        const double tolerance = 1e-9, size = std::sqrt((a11 + a22) / std::max(a0, 1e-300)) + std::sqrt(a0);
+        if (std::abs(a1) > tolerance * a0 * size || std::abs(a2) > tolerance * a0 * size ||
+            std::abs(a12) > tolerance * (a11 + a22 + a0 * a0))
+          throw InvalidArgument("contact group: contact " + std::to_string(c) + " (blocks " + std::to_string(body_a[c]) + ", " +
+                                std::to_string(body_b[c]) + "): the Maxwell contact field needs the origin at the area " +
+                                "centroid of the CPs and t1 along a principal axis of their areas; sum a x1 = " +
+                                std::to_string(a1) + ", sum a x2 = " + std::to_string(a2) + " m^3, sum a x1 x2 = " +
+                                std::to_string(a12) + " m^4 (at most " + std::to_string(tolerance) + " relative)");
         const auto& p = properties[property[c]];
-        for (auto& branch : field[c]) {
-          typename Damping::Generalised h;
-          std::copy_n(branch.begin(), h.size(), h.begin());
-          const auto branch_force = Damping::contact_stiffness(area_moments[c], Law::normal_stiffness(p), Law::shear_stiffness(p), h);
-          branch = {};
-          std::copy(branch_force.begin(), branch_force.end(), branch.begin());
-        }
+        field_stiffness[c] = Damping::contact_stiffness(a0, a11, a22, Law::normal_stiffness(p), Law::shear_stiffness(p));
+        for (auto& branch : field[c])  // elongation form (begin_contact) to forces, F = G h (the padding to 0)
+          for (std::size_t j = 0; j < branch.size(); ++j) branch[j] *= field_stiffness[c][j];
       }
     }
     first.assign(blocks + 1, 0);

@@ -574,8 +574,8 @@ class Simulation {
       g.properties.push_back(params);
     }
     const std::size_t a = first->a, bb = first->b;
-    const Vec3 n = first->normal, t1 = first->tangent, t2 = n.cross(t1);
-    // The origin at the area centroid of the CPs keeps the plane coordinates small.
+    // The frame of the CPs' areas: the origin at their centroid, t1 along a principal axis (principal_turn). The
+    // plane coordinates stay small, and a Maxwell field's stiffness is diagonal (damping::Maxwell::contact_stiffness).
     Vec3 origin = Vec3::Zero();
     double total_area = 0;
     for (auto c = first; c != last; ++c) {
@@ -583,6 +583,22 @@ class Simulation {
       total_area += c->area;
     }
     origin /= total_area;
+    const Vec3 n = first->normal;
+    Vec3 t1 = first->tangent;
+    {
+      const Vec3 t2 = n.cross(t1);
+      double i11 = 0, i22 = 0, i12 = 0;
+      for (auto c = first; c != last; ++c) {
+        const Vec3 d = c->position - origin;
+        const double x1 = d.dot(t1), x2 = d.dot(t2);
+        i11 += c->area * x1 * x1;
+        i22 += c->area * x2 * x2;
+        i12 += c->area * x1 * x2;
+      }
+      const double turn = principal_turn(i11, i22, i12);
+      t1 = (std::cos(turn) * t1 + std::sin(turn) * t2).normalized();
+    }
+    const Vec3 t2 = n.cross(t1);
     const Group<L>* o = nullptr;
     std::size_t oc = 0;
     if (keep_history) {
@@ -640,16 +656,18 @@ class Simulation {
           taken[k] = 1;
           matched = true;
           h = o->history[k];
-          if (!in_field_form) spring = o->spring_state[k];
+          if (!in_field_form) {
+            // The shear springs' states follow the new tangent directions, like the law's shear stresses below.
+            spring = o->spring_state[k];
+            if constexpr (!std::is_same_v<typename Group<L>::SpringState::value_type, damping::NoState>)
+              turn_shear(spring[1], spring[2], old_frame, t1, t2);
+          }
           slip = o->slip_dissipation[k];
           viscous = o->viscous_dissipation[k];
           carried_slip += slip;
           carried_viscous += viscous;
           // Shear components follow the new tangent directions.
-          if constexpr (requires { h.shear; }) {
-            const Vec3 shear = h.shear[0] * old_frame.t1 + h.shear[1] * old_frame.t2;
-            h.shear = {shear.dot(t1), shear.dot(t2)};
-          }
+          if constexpr (requires { h.shear; }) turn_shear(h.shear[0], h.shear[1], old_frame, t1, t2);
           break;
         }
       }
@@ -661,6 +679,19 @@ class Simulation {
         if constexpr (requires { h.damage; }) h.damage = 1.0;
       }
       g.add_point(d.dot(t1), d.dot(t2), c->area, h, spring, slip, viscous);
+    }
+  }
+
+  /// A shear pair (s1, s2) along the old frame's t1, t2 re-expressed along the new t1, t2 (the same plane):
+  /// component by component for a state that holds one value per Maxwell branch.
+  template <class S>
+  static void turn_shear(S& s1, S& s2, const ContactFrame& old_frame, const Vec3& t1, const Vec3& t2) {
+    if constexpr (std::is_arithmetic_v<S>) {
+      const Vec3 shear = s1 * old_frame.t1 + s2 * old_frame.t2;
+      s1 = shear.dot(t1);
+      s2 = shear.dot(t2);
+    } else {
+      for (std::size_t i = 0; i < s1.size(); ++i) turn_shear(s1[i], s2[i], old_frame, t1, t2);
     }
   }
 
@@ -764,7 +795,7 @@ class Simulation {
     auto* __restrict const field = g.field.data();
     double* __restrict const field_viscous = g.field_viscous.data();
     std::uint8_t* __restrict const field_form = g.field_form.data();
-    const auto* __restrict const area_moments = g.area_moments.data();
+    const auto* __restrict const field_stiffness = g.field_stiffness.data();
     const auto count = static_cast<std::ptrdiff_t>(g.contacts());
     const Damping& damping = damping_;
     const double h = 0.5 * increment_dt;
@@ -803,8 +834,8 @@ class Simulation {
       const std::uint32_t begin = first_point[c], end = first_point[c + 1];
       // Maxwell branches in the contact-field form (damping::Maxwell::ContactField) are not evaluated per CP: the
       // field keeps each branch's generalised force on the contact, F_i = G h_i, advanced once per step under the
-      // contact's generalised elongation increment q = (-du0, -w) through G q (G the contact's stiffness from its
-      // area moments); the field's force on the contact is sum_i F_i, added to the resultants after the CP loop,
+      // contact's generalised elongation increment q = (-du0, -w) through G q (G the contact's stiffness, diagonal
+      // in the frame of the CPs' areas); the field's force on the contact is sum_i F_i, added to the resultants after the CP loop,
       // and its tractions at the CPs are evaluated only when asked for (ContactGroup::traction_at). It goes first,
       // so that its chain of dependent operations overlaps with the CP loop, which runs the law only. A contact
       // whose CPs keep their own branch states (field_form 0, after a CP released its branches) adds them in a
@@ -815,7 +846,7 @@ class Simulation {
       if constexpr (G::has_field) {
         if (in_field) {
           q = {-du0_n, -du0_1, -du0_2, -w_n, -w_1, -w_2};
-          field_step = damping.advance_field(field[c], q, Damping::contact_stiffness(area_moments[c], kn, ks, q), increment_dt);
+          field_step = damping.advance_field(field[c], q, field_stiffness[c], increment_dt);
         }
       }
       [[maybe_unused]] bool inactive = false;
