@@ -141,7 +141,7 @@ TEST_CASE("maxwell: the contact field gives the resultant and the work of every 
   damping::Maxwell<3>::ContactField field{};
   double own_work = 0, field_work = 0;
   // The two differ by rounding only: relative to the largest force and moment.
-  double largest = 0, deviation = 0;
+  double largest = 0, deviation = 0, branch_deviation = 0, round_trip = 0;
   for (int step = 0; step < 300; ++step) {
     const double t = step;
     const damping::Maxwell<3>::Generalised q{1e-7 * std::sin(0.1 * t), -2e-7 * std::cos(0.07 * t), 3e-8 * std::sin(0.3 * t),
@@ -163,9 +163,26 @@ TEST_CASE("maxwell: the contact field gives the resultant and the work of every 
       largest = std::max(largest, std::abs(want[j]));
       deviation = std::max(deviation, std::abs(got.resultant[j] - want[j]));
     }
+    // Branch by branch (the field keeps the sum in place of the last branch): sum a B^T s_i.
+    const auto forces = damping::Maxwell<3>::branch_forces(field);
+    for (std::size_t i = 0; i < 3; ++i) {
+      damping::Maxwell<3>::Generalised branch{};
+      for (std::size_t p = 0; p < points.size(); ++p) {
+        const auto [x1, x2, a] = points[p];
+        const std::array<double, 3> s{own[p][0][i], own[p][1][i], own[p][2][i]};
+        branch = {branch[0] + a * s[0], branch[1] + a * s[1], branch[2] + a * s[2], branch[3] + a * (x1 * s[2] - x2 * s[1]),
+                  branch[4] + a * x2 * s[0], branch[5] - a * x1 * s[0]};
+      }
+      for (std::size_t j = 0; j < 6; ++j) branch_deviation = std::max(branch_deviation, std::abs(forces[i][j] - branch[j]));
+    }
+    const auto back = damping::Maxwell<3>::branch_forces(damping::Maxwell<3>::field_of(forces));
+    for (std::size_t i = 0; i < 3; ++i)
+      for (std::size_t j = 0; j < 6; ++j) round_trip = std::max(round_trip, std::abs(back[i][j] - forces[i][j]));
   }
   CHECK(largest > 1.0);
   CHECK(deviation < 1e-12 * largest);
+  CHECK(branch_deviation < 1e-12 * largest);
+  CHECK(round_trip < 1e-14 * largest);
   CHECK(field_work == test::approx(own_work).epsilon(1e-12));
   CHECK(own_work > 0);
 }

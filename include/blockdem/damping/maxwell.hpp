@@ -124,6 +124,14 @@ struct Maxwell {
       gain_[static_cast<std::size_t>(i)] = b.alpha * b.tau * (1.0 - decay_[static_cast<std::size_t>(i)]) / dt;
       inverse_alpha_[static_cast<std::size_t>(i)] = 1.0 / b.alpha;
     }
+    // The contact field's last slot (sum_i F_i): its own decay, the others' excess over it (from expm1, without
+    // cancellation), and the summed gain.
+    const auto last = static_cast<std::size_t>(N - 1);
+    gain_sum_ = 0.0;
+    for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
+      gain_sum_ += gain_[i];
+      decay_excess_[i] = i < last ? std::expm1(-dt / branches[i].tau) - std::expm1(-dt / branches[last].tau) : 0.0;
+    }
   }
 
   double spring_stress(ContactState& s, double stiffness, double du, double dt, bool active,
@@ -271,16 +279,19 @@ struct Maxwell {
   // s_i = K B h_i (K = diag(k_n, k_s, k_s)) with one filtered elongation per branch, h_i <- h_i e^(-dt/tau_i) +
   // alpha_i tau_i (1 - e^(-dt/tau_i)) q / dt. Summed over the CPs (area a) they act on the contact with the
   // generalised force F_i = G h_i, G = sum a B^T K B (contact_stiffness), which follows the same update with G q
-  // in place of q. The field keeps F_i: six numbers per branch and contact instead of three per branch and CP, per
-  // step one product G q, and the contact's force is sum_i F_i. With the origin at the area centroid of the CPs and
-  // t1 along a principal axis of their areas (sum a x1 = sum a x2 = sum a x1 x2 = 0), as ContactGroup keeps every
-  // contact, G is diagonal and G q six products. The per-CP stresses K B h_i follow from h_i = G^+ F_i
-  // (ContactGroup::field_elongations), exact at the CPs also where G is singular. When a CP releases its branches
-  // (it fails or opens), the contact goes over to the per-CP state (spring_stresses), from the field's values at
-  // its CPs.
+  // in place of q. The field keeps the F_i: six numbers per branch and contact instead of three per branch and CP,
+  // per step one product G q, and the contact's force is R = sum_i F_i. Its last slot holds R itself instead of F_N
+  // (branch_forces gives F_N = R - sum_(i<N) F_i), updated as R' = e^(-dt/tau_N) R + sum_(i<N) (e^(-dt/tau_i) -
+  // e^(-dt/tau_N)) F_i + sum_i alpha_i tau_i (1 - e^(-dt/tau_i)) G q / dt: the force needs no sum over the
+  // branches, nor the work one over their old values (Maxwell<3> 2-5 % faster). With the origin at the area
+  // centroid of the CPs and t1 along a principal axis of their areas (sum a x1 = sum a x2 = sum a x1 x2 = 0), as
+  // ContactGroup keeps every contact, G is diagonal and G q six products. The per-CP stresses K B h_i follow from
+  // h_i = G^+ F_i (ContactGroup::field_elongations), exact at the CPs also where G is singular. When a CP releases
+  // its branches (it fails or opens), the contact goes over to the per-CP state (spring_stresses), from the
+  // field's values at its CPs.
   using Generalised = std::array<double, 6>;  // e0_n, e0_1, e0_2 (m); r_n, r_1, r_2 (rad); or the forces (N, N m)
-  // F_i, one per branch (N, N m; force along n, t1, t2, then moment about the origin along n, t1, t2), each followed
-  // by two zeros: two whole vectors of four lanes.
+  // F_1 .. F_(N-1), then sum_i F_i (N, N m; force along n, t1, t2, then moment about the origin along n, t1, t2),
+  // each followed by two zeros: two whole vectors of four lanes.
   using ContactField = std::array<std::array<double, 8>, static_cast<std::size_t>(N)>;
   /// The diagonal of a contact's stiffness G on its generalised elongation (contact_stiffness), followed by two
   /// zeros like a branch of the field: N/m for the three elongations, N m for the three rotations.
@@ -309,24 +320,53 @@ struct Maxwell {
     std::memcpy(&d0, g.data(), sizeof d0);
     std::memcpy(&d1, g.data() + 4, sizeof d1);
     const Quad g0 = d0 * q0, g1 = d1 * q1;  // G q
-    Quad b0 = {}, b1 = {}, a0 = {}, a1 = {};
-    for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
+    constexpr std::size_t last = static_cast<std::size_t>(N - 1);
+    Quad r0, r1;  // sum_i F_i before the step
+    std::memcpy(&r0, f[last].data(), sizeof r0);
+    std::memcpy(&r1, f[last].data() + 4, sizeof r1);
+    if (!(dt > 0.0)) return {{r0[0], r0[1], r0[2], r0[3], r1[0], r1[1]}, 0.0};
+    Quad n0 = r0 * decay_[last] + gain_sum_ * g0, n1 = r1 * decay_[last] + gain_sum_ * g1;
+    for (std::size_t i = 0; i < last; ++i) {
       Quad f0, f1;
       std::memcpy(&f0, f[i].data(), sizeof f0);
       std::memcpy(&f1, f[i].data() + 4, sizeof f1);
-      b0 += f0;
-      b1 += f1;
-      if (dt > 0.0) {
-        f0 = f0 * decay_[i] + gain_[i] * g0;
-        f1 = f1 * decay_[i] + gain_[i] * g1;
-        std::memcpy(f[i].data(), &f0, sizeof f0);
-        std::memcpy(f[i].data() + 4, &f1, sizeof f1);
-      }
-      a0 += f0;
-      a1 += f1;
+      n0 += decay_excess_[i] * f0;
+      n1 += decay_excess_[i] * f1;
+      f0 = f0 * decay_[i] + gain_[i] * g0;
+      f1 = f1 * decay_[i] + gain_[i] * g1;
+      std::memcpy(f[i].data(), &f0, sizeof f0);
+      std::memcpy(f[i].data() + 4, &f1, sizeof f1);
     }
-    const Quad w = (b0 + a0) * q0 + (b1 + a1) * q1;
-    return {{a0[0], a0[1], a0[2], a0[3], a1[0], a1[1]}, 0.5 * ((w[0] + w[1]) + (w[2] + w[3]))};
+    std::memcpy(f[last].data(), &n0, sizeof n0);
+    std::memcpy(f[last].data() + 4, &n1, sizeof n1);
+    const Quad w = (r0 + n0) * q0 + (r1 + n1) * q1;
+    return {{n0[0], n0[1], n0[2], n0[3], n1[0], n1[1]}, 0.5 * ((w[0] + w[1]) + (w[2] + w[3]))};
+  }
+  /// The branches' forces F_i of a field (N, N m): the last one from the sum the field keeps.
+  static std::array<Generalised, static_cast<std::size_t>(N)> branch_forces(const ContactField& f) noexcept {
+    std::array<Generalised, static_cast<std::size_t>(N)> forces{};
+    constexpr std::size_t last = static_cast<std::size_t>(N - 1);
+    for (std::size_t j = 0; j < 6; ++j) {
+      double rest = f[last][j];
+      for (std::size_t i = 0; i < last; ++i) {
+        forces[i][j] = f[i][j];
+        rest -= f[i][j];
+      }
+      forces[last][j] = rest;
+    }
+    return forces;
+  }
+  /// The field of the branch forces F_i (N, N m): branch_forces inverted.
+  static ContactField field_of(const std::array<Generalised, static_cast<std::size_t>(N)>& forces) noexcept {
+    ContactField f{};
+    constexpr std::size_t last = static_cast<std::size_t>(N - 1);
+    for (std::size_t j = 0; j < 6; ++j) {
+      double sum = 0.0;
+      for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) sum += forces[i][j];
+      for (std::size_t i = 0; i < last; ++i) f[i][j] = forces[i][j];
+      f[last][j] = sum;
+    }
+    return f;
   }
   /// K B(x1, x2) h: the stresses (Pa; normal, shear 1, shear 2) of a field value h at a CP.
   static constexpr std::array<double, 3> field_stress(const Generalised& h, double kn, double ks, double x1, double x2) noexcept {
@@ -395,6 +435,8 @@ struct Maxwell {
   std::array<double, static_cast<std::size_t>(N)> decay_{};
   std::array<double, static_cast<std::size_t>(N)> gain_{};
   std::array<double, static_cast<std::size_t>(N)> inverse_alpha_{};
+  std::array<double, static_cast<std::size_t>(N)> decay_excess_{};  // e^(-dt/tau_i) - e^(-dt/tau_N), 0 for i = N
+  double gain_sum_ = 0.0;
 };
 
 }  // namespace blockdem::damping

@@ -146,10 +146,10 @@ struct ContactGroup {
   /// and B h_i, the elongation at each CP, is that of the h_i given (a CP on the line does not move in a turn about
   /// it).
   auto field_elongations(std::size_t c) const {
-    std::array<typename Damping::Generalised, std::tuple_size_v<Field>> h{};
+    auto h = Damping::branch_forces(field[c]);
     const auto& g = field_stiffness[c];
-    for (std::size_t b = 0; b < h.size(); ++b)
-      for (std::size_t j = 0; j < 6; ++j) h[b][j] = g[j] > 0.0 ? field[c][b][j] / g[j] : 0.0;
+    for (auto& branch : h)
+      for (std::size_t j = 0; j < 6; ++j) branch[j] = g[j] > 0.0 ? branch[j] / g[j] : 0.0;
     return h;
   }
 
@@ -222,8 +222,10 @@ struct ContactGroup {
                                 std::to_string(a12) + " m^4 (at most " + std::to_string(tolerance) + " relative)");
         const auto& p = properties[property[c]];
         field_stiffness[c] = Damping::contact_stiffness(a0, a11, a22, Law::normal_stiffness(p), Law::shear_stiffness(p));
-        for (auto& branch : field[c])  // elongation form (begin_contact) to forces, F = G h (the padding to 0)
-          for (std::size_t j = 0; j < branch.size(); ++j) branch[j] *= field_stiffness[c][j];
+        std::array<typename Damping::Generalised, std::tuple_size_v<Field>> forces{};  // F = G h (begin_contact: h)
+        for (std::size_t b = 0; b < forces.size(); ++b)
+          for (std::size_t j = 0; j < 6; ++j) forces[b][j] = field_stiffness[c][j] * field[c][b][j];
+        field[c] = Damping::field_of(forces);
       }
     }
     first.assign(blocks + 1, 0);
