@@ -5,6 +5,9 @@
 //
 //   bench_wall_interleaved [--law elastic|mohr-coulomb|softening] [--rounds 50] [--steps-per-turn 8] [--threads 1]
 //
+// With --threads N > 1 every turn is run twice, on one thread and on N, and the report adds the speed-up of N
+// threads over one at each quantile (results do not depend on the number of threads, so the runs stay alike).
+//
 // On a virtual machine whose other tenants come and go, a whole benchmark run of one binary can be 30 % slower
 // than the next; the ratio of two runs is then noise. Taking turns within one process keeps the ratio to about
 // 1 %, run to run.
@@ -28,51 +31,74 @@ namespace {
 using namespace blockdem;
 using namespace blockdem::benchmarks;
 
-/// One simulation of the wall and the times of its steps (us).
+/// The q-quantile of step times (us).
+double quantile(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  return v[static_cast<std::size_t>(q * static_cast<double>(v.size() - 1))];
+}
+
+/// One simulation of the wall and the times of its steps (us) on one thread and on several.
 template <class Law, class Damping>
 struct Contender {
   std::unique_ptr<model::Model> model = std::make_unique<model::Model>(make_wall());
   Simulation<Damping, Law> simulation{*model, make_damping<Damping>(), [](int, int) { return parameters<Law>(); }};
-  std::vector<double> step_us;
+  std::vector<double> step_us, threaded_step_us;
 
   Contender() {
     for (int i = 0; i < 20; ++i) simulation.step();  // warm up, let it settle a little (as bench_wall)
   }
-  /// Runs `steps` steps; the first of a turn is not kept (its data were pushed out of the caches by the others).
-  void turn(int steps) {
+  /// Runs `steps` steps on one thread, then as many on `threads` if more than one; the first step of each is not
+  /// kept (its data were pushed out of the caches by the others).
+  void turn(int steps, int threads) {
+    run(steps, 1, step_us);
+    if (threads > 1) run(steps, threads, threaded_step_us);
+  }
+
+ private:
+  void run(int steps, int threads, std::vector<double>& into) {
+    omp_set_num_threads(threads);
     for (int i = 0; i < steps; ++i) {
       const auto start = std::chrono::steady_clock::now();
       simulation.step();
       const auto stop = std::chrono::steady_clock::now();
-      if (i > 0) step_us.push_back(std::chrono::duration<double, std::micro>(stop - start).count());
+      if (i > 0) into.push_back(std::chrono::duration<double, std::micro>(stop - start).count());
     }
-  }
-  double quantile(double f) const {
-    auto v = step_us;
-    std::sort(v.begin(), v.end());
-    return v[static_cast<std::size_t>(f * static_cast<double>(v.size() - 1))];
   }
 };
 
+/// The table of one thread count: step times, ns per CP-step and the Maxwell<3>/Mass ratio at three quantiles.
+void report(const std::vector<double>& none, const std::vector<double>& mass, const std::vector<double>& maxwell, double points) {
+  std::printf("quantile | us per step: None  Mass  Maxwell<3> | ns per CP-step: None  Mass  Maxwell<3> | Maxwell<3> / Mass\n");
+  for (const double f : {0.1, 0.25, 0.5}) {
+    const double n = quantile(none, f), m = quantile(mass, f), x = quantile(maxwell, f);
+    std::printf("q%02.0f      | %8.1f %8.1f %8.1f | %6.1f %6.1f %6.1f | %.3f\n", 100 * f, n, m, x, 1e3 * n / points,
+                1e3 * m / points, 1e3 * x / points, x / m);
+  }
+}
+
 template <class Law>
 void compare(const std::string& law, int rounds, int steps, int threads) {
-  omp_set_num_threads(threads);
   Contender<Law, damping::None> none;
   Contender<Law, damping::MassProportional> mass;
   Contender<Law, damping::Maxwell<3>> maxwell;
   const auto points = static_cast<double>(mass.simulation.contact_points());
   for (int r = 0; r < rounds; ++r) {
-    none.turn(steps);
-    mass.turn(steps);
-    maxwell.turn(steps);
+    none.turn(steps, threads);
+    mass.turn(steps, threads);
+    maxwell.turn(steps, threads);
   }
-  std::printf("wall: %zu blocks, %.0f contact points, law %s, %d thread(s), %d rounds of %d steps per policy\n",
-              mass.model->bodies.size(), points, law.c_str(), threads, rounds, steps);
-  std::printf("quantile | us per step: None  Mass  Maxwell<3> | ns per CP-step: None  Mass  Maxwell<3> | Maxwell<3> / Mass\n");
-  for (const double f : {0.1, 0.25, 0.5}) {
-    const double n = none.quantile(f), m = mass.quantile(f), x = maxwell.quantile(f);
-    std::printf("q%02.0f      | %8.1f %8.1f %8.1f | %6.1f %6.1f %6.1f | %.3f\n", 100 * f, n, m, x, 1e3 * n / points,
-                1e3 * m / points, 1e3 * x / points, x / m);
+  std::printf("wall: %zu blocks, %.0f contact points, law %s, %d rounds of %d steps per policy\n", mass.model->bodies.size(),
+              points, law.c_str(), rounds, steps);
+  std::printf("1 thread\n");
+  report(none.step_us, mass.step_us, maxwell.step_us, points);
+  if (threads > 1) {
+    std::printf("%d threads\n", threads);
+    report(none.threaded_step_us, mass.threaded_step_us, maxwell.threaded_step_us, points);
+    std::printf("speed-up of %d threads over 1 | None  Mass  Maxwell<3>\n", threads);
+    for (const double f : {0.1, 0.25, 0.5}) {
+      const auto up = [&](const auto& c) { return quantile(c.step_us, f) / quantile(c.threaded_step_us, f); };
+      std::printf("q%02.0f                          | %5.2f %5.2f %5.2f\n", 100 * f, up(none), up(mass), up(maxwell));
+    }
   }
 }
 
@@ -85,7 +111,7 @@ int main(int argc, char** argv) {
   app.add_option("--law", law, "joint law")->check(CLI::IsMember({"elastic", "mohr-coulomb", "softening"}));
   app.add_option("--rounds", rounds, "turns per policy")->check(CLI::Range(1, 100000));
   app.add_option("--steps-per-turn", steps, "steps per turn (the first of each is not timed)")->check(CLI::Range(2, 100000));
-  app.add_option("--threads", threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+  app.add_option("--threads", threads, "OpenMP threads besides one (each turn also run on this many)")->check(CLI::Range(1, 1024));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
