@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include "../approx.hpp"
+#include "../area_frame.hpp"
 
 #include <array>
 #include <cmath>
@@ -105,28 +106,7 @@ TEST_CASE("maxwell: the contact field gives the resultant and the work of every 
   // Four CPs of unequal areas, in the frame of their areas (origin at the centroid, t1 along a principal axis),
   // where G is diagonal: turned and shifted there from an arbitrary placement.
   std::array<std::array<double, 3>, 4> points{{{0.12, 0.05, 0.01}, {-0.12, 0.05, 0.02}, {-0.12, -0.05, 0.015}, {0.3, -0.2, 0.005}}};
-  {
-    double a0 = 0, c1 = 0, c2 = 0;
-    for (const auto& [x1, x2, a] : points) {
-      a0 += a;
-      c1 += a * x1;
-      c2 += a * x2;
-    }
-    c1 /= a0;
-    c2 /= a0;
-    double i11 = 0, i22 = 0, i12 = 0;
-    for (const auto& [x1, x2, a] : points) {
-      i11 += a * (x1 - c1) * (x1 - c1);
-      i22 += a * (x2 - c2) * (x2 - c2);
-      i12 += a * (x1 - c1) * (x2 - c2);
-    }
-    const double turn = 0.5 * std::atan2(2 * i12, i11 - i22);
-    for (auto& [x1, x2, a] : points) {
-      const double u = x1 - c1, v = x2 - c2;
-      x1 = std::cos(turn) * u + std::sin(turn) * v;
-      x2 = -std::sin(turn) * u + std::cos(turn) * v;
-    }
-  }
+  test::to_area_frame(points);
   double area = 0, i1 = 0, i2 = 0, product = 0;
   for (const auto& [x1, x2, a] : points) {
     area += a;

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include "../approx.hpp"
+#include "../area_frame.hpp"
 
 #include <cmath>
 #include <vector>
@@ -331,26 +332,7 @@ TEST_CASE("contact group: a Maxwell field kept as forces gives back the elongati
       {{0.12, 0.05, 0.01}, {-0.2, -0.03, 0.02}},
       {{0.1, -0.04, 0.01}}};
   for (auto& points : layouts) {
-    double a0 = 0, c1 = 0, c2 = 0;
-    for (const auto& [x1, x2, a] : points) {
-      a0 += a;
-      c1 += a * x1;
-      c2 += a * x2;
-    }
-    c1 /= a0;
-    c2 /= a0;
-    double i11 = 0, i22 = 0, i12 = 0;
-    for (const auto& [x1, x2, a] : points) {
-      i11 += a * (x1 - c1) * (x1 - c1);
-      i22 += a * (x2 - c2) * (x2 - c2);
-      i12 += a * (x1 - c1) * (x2 - c2);
-    }
-    const double turn = principal_turn(i11, i22, i12);
-    for (auto& [x1, x2, a] : points) {
-      const double u = x1 - c1, v = x2 - c2;
-      x1 = std::cos(turn) * u + std::sin(turn) * v;
-      x2 = -std::sin(turn) * u + std::cos(turn) * v;
-    }
+    test::to_area_frame(points);
     Group g;
     g.properties.push_back(contact::Elastic::Parameters(1e10, 4e9));
     Group::Field field{};
