@@ -11,6 +11,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -213,13 +214,16 @@ struct ContactGroup {
         }
         // What is left of the first moments and the product of area is rounding: relative to the contact's size.
         const double tolerance = 1e-9, size = std::sqrt((a11 + a22) / std::max(a0, 1e-300)) + std::sqrt(a0);
-        if (std::abs(a1) > tolerance * a0 * size || std::abs(a2) > tolerance * a0 * size ||
-            std::abs(a12) > tolerance * (a11 + a22 + a0 * a0))
+        const double off_1 = std::abs(a1) / (a0 * size), off_2 = std::abs(a2) / (a0 * size),
+                     off_12 = std::abs(a12) / (a11 + a22 + a0 * a0);
+        if (!(off_1 <= tolerance && off_2 <= tolerance && off_12 <= tolerance)) {
+          char numbers[160];
+          std::snprintf(numbers, sizeof numbers, "sum a x1 = %.3g, sum a x2 = %.3g (of A L), sum a x1 x2 = %.3g (of I); at most %.0e",
+                        off_1, off_2, off_12, tolerance);
           throw InvalidArgument("contact group: contact " + std::to_string(c) + " (blocks " + std::to_string(body_a[c]) + ", " +
                                 std::to_string(body_b[c]) + "): the Maxwell contact field needs the origin at the area " +
-                                "centroid of the CPs and t1 along a principal axis of their areas; sum a x1 = " +
-                                std::to_string(a1) + ", sum a x2 = " + std::to_string(a2) + " m^3, sum a x1 x2 = " +
-                                std::to_string(a12) + " m^4 (at most " + std::to_string(tolerance) + " relative)");
+                                "centroid of the CPs and t1 along a principal axis of their areas; " + numbers);
+        }
         const auto& p = properties[property[c]];
         field_stiffness[c] = Damping::contact_stiffness(a0, a11, a22, Law::normal_stiffness(p), Law::shear_stiffness(p));
         std::array<typename Damping::Generalised, std::tuple_size_v<Field>> forces{};  // F = G h (begin_contact: h)
