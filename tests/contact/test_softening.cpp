@@ -366,6 +366,7 @@ TEST_CASE("softening: damping acts on an intact or lightly damaged closed joint,
 // ---- property test ----
 
 TEST_CASE("softening: property test over random displacement paths (no NaN, monotone damage, stresses within the surface)") {
+  // Also: damping_active, written to read two fields of an undamaged joint, agrees with its full definition.
   const auto base = table1();
   const contact::JointStiffness k{base.normal_stiffness, base.shear_stiffness};
   const ElastoSoftening::FractureEnergies g{base.tension_fracture_energy, base.shear_fracture_energy,
@@ -407,7 +408,10 @@ TEST_CASE("softening: property test over random displacement paths (no NaN, mono
                       sigma <= ElastoSoftening::cap_strength(p, h) * (1 + 1e-12) + scale &&
                       tau <= ElastoSoftening::shear_strength(p, h, sigma) * (1 + 1e-9) + scale &&
                       std::abs(sigma - ElastoSoftening::normal_stress(p, h)) <= 1e-12 * std::abs(sigma) &&
-                      r.dissipated >= -1e-9 * (1 + stored);
+                      r.dissipated >= -1e-9 * (1 + stored) &&
+                      // damping_active's short form (d = 0 first) against its full definition
+                      ElastoSoftening::damping_active(p, h) ==
+                          (h.inelastic == 0 && h.damage < p.damping_damage_limit && h.failed == 0 && !(h.gap > 0 && h.damage > 0));
       if (!ok) {
         ++checks_failed;
         if (checks_failed < 5) {

@@ -369,9 +369,11 @@ struct ElastoSoftening {
   /// Off while the last step cracked, crushed or slipped, once the bond has failed or d reached the damping damage
   /// limit, and while a cracked joint is open (gap > 0 with d > 0). An intact joint in tension is bonded, not open.
   static constexpr bool damping_active(const Parameters& p, const History& h) noexcept {
-    // The two flags are not tested side by side: GCC then reads them as one word, right after the step stored
-    // `inelastic` alone, a store-forwarding stall that cost a quarter of the contact loop with Maxwell damping.
-    return h.inelastic == 0 && h.damage < p.damping_damage_limit && h.failed == 0 && !(h.gap > 0 && h.damage > 0);
+    // An undamaged joint (d = 0, the common case) has not failed (failed implies d >= failure_damage) and is below
+    // the damping damage limit (> 0): two fields to read instead of four. The two flags are not tested side by
+    // side: GCC then reads them as one word, right after the step stored `inelastic` alone, a store-forwarding
+    // stall that cost a quarter of the contact loop with Maxwell damping.
+    return h.inelastic == 0 && (h.damage == 0 || (h.damage < p.damping_damage_limit && h.failed == 0 && !(h.gap > 0)));
   }
 
   /// Recoverable elastic energy per area, with the current secant stiffness on the side the gap is on.
