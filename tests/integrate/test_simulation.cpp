@@ -353,6 +353,22 @@ TEST_CASE("contact group: a Maxwell field kept as forces gives back the elongati
   }
 }
 
+TEST_CASE("contact group: area moments find the centroid and the principal axes of a turned, shifted rectangle") {
+  // Reference: four equal CPs at the corners of a 0.4 x 0.1 m rectangle, turned by 0.3 rad and shifted to (1, -2):
+  // the centroid is (1, -2), the principal axis along the long side is at 0.3 rad, and the polar moment about the
+  // centroid is 4 a (0.2^2 + 0.05^2) (point areas).
+  const double turn = 0.3, a = 0.01;
+  AreaMoments m;
+  for (const auto& [u, v] : std::vector<std::array<double, 2>>{{0.2, 0.05}, {-0.2, 0.05}, {-0.2, -0.05}, {0.2, -0.05}})
+    m.add(1.0 + std::cos(turn) * u - std::sin(turn) * v, -2.0 + std::sin(turn) * u + std::cos(turn) * v, a);
+  CHECK(m.centroid_1() == test::approx(1.0).epsilon(1e-14));
+  CHECK(m.centroid_2() == test::approx(-2.0).epsilon(1e-14));
+  CHECK(m.principal_turn() == test::approx(turn).epsilon(1e-12));
+  const double i22 = m.second_22 - m.first_2 * m.centroid_2();
+  const double i11 = m.second_11 - m.first_1 * m.centroid_1();
+  CHECK(i11 + i22 == test::approx(4 * a * (0.2 * 0.2 + 0.05 * 0.05)).epsilon(1e-10));
+}
+
 TEST_CASE("contact group: a Maxwell field refuses CPs whose origin is not their area centroid or t1 not a principal axis") {
   // The field's stiffness is diagonal only in the frame of the CPs' areas: any other frame is an error naming the
   // contact, not a silently wrong force.

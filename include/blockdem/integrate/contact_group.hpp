@@ -3,7 +3,7 @@
 // common plane, as in 3DEC); its contact points (CPs, the sub-contacts) lie on that plane. What is common to the
 // CPs of a contact is stored and computed once per contact: the block pair, the joint parameters, the contact
 // frame (n, t1, t2) and its origin, fixed in block A (the origin at the area centroid of the CPs, t1 along a
-// principal axis of their areas: principal_turn); the relative motion of the two blocks, reduced to an affine
+// principal axis of their areas: AreaMoments); the relative motion of the two blocks, reduced to an affine
 // map of the CP's plane coordinates; the resultant force and moments. Per CP remain two plane coordinates, the
 // area, the law's history, the damping policy's spring state and the traction.
 
@@ -43,10 +43,33 @@ void add_contact_point_energy(const Damping& damping, const typename Law::Parame
   viscous_total += viscous;
 }
 
-/// The turn theta (rad) of t1 about n, t1' = cos(theta) t1 + sin(theta) t2, that makes t1' a principal axis of the
-/// areas of a contact's CPs, given their second moments about the area centroid in the frame (t1, t2): i11 = sum a
-/// x1^2, i22 = sum a x2^2, i12 = sum a x1 x2 (m^4). Then sum a x1' x2' = 0: tan(2 theta) = 2 i12 / (i11 - i22).
-inline double principal_turn(double i11, double i22, double i12) { return 0.5 * std::atan2(2.0 * i12, i11 - i22); }
+/// The area moments of a contact's CPs at plane coordinates (x1, x2) from the origin along (t1, t2): the contact
+/// frame is chosen with them (the origin at the centroid, t1 along a principal axis) and a Maxwell field's
+/// stiffness follows from them.
+struct AreaMoments {
+  double area = 0;                                // sum a, m^2
+  double first_1 = 0, first_2 = 0;                // sum a x1, sum a x2, m^3
+  double second_11 = 0, second_22 = 0, second_12 = 0;  // sum a x1^2, sum a x2^2, sum a x1 x2, m^4
+
+  void add(double x1, double x2, double a) {
+    area += a;
+    first_1 += a * x1;
+    first_2 += a * x2;
+    second_11 += a * x1 * x1;
+    second_22 += a * x2 * x2;
+    second_12 += a * x1 * x2;
+  }
+  double centroid_1() const { return first_1 / area; }
+  double centroid_2() const { return first_2 / area; }
+  /// The turn theta (rad) of t1 about n, t1' = cos(theta) t1 + sin(theta) t2, that makes t1' a principal axis of
+  /// the areas: with the moments about the centroid (parallel axes), tan(2 theta) = 2 I12 / (I11 - I22), and then
+  /// sum a x1' x2' = 0 about the centroid.
+  double principal_turn() const {
+    const double i11 = second_11 - first_1 * centroid_1(), i22 = second_22 - first_2 * centroid_2(),
+                 i12 = second_12 - first_1 * centroid_2();
+    return 0.5 * std::atan2(2.0 * i12, i11 - i22);
+  }
+};
 
 namespace detail {
 /// The per-contact branch state of policies with a contact-field form (damping::Maxwell::ContactField), else none.
@@ -202,20 +225,13 @@ struct ContactGroup {
     if constexpr (has_field) {
       field_stiffness.assign(contacts(), {});
       for (std::size_t c = 0; c < contacts(); ++c) {
-        double a0 = 0, a1 = 0, a2 = 0, a11 = 0, a22 = 0, a12 = 0;  // m^2, m^3, m^3, m^4, m^4, m^4
-        for (std::uint32_t k = first_point[c]; k < first_point[c + 1]; ++k) {
-          const double a = area[k], u = s1[k], v = s2[k];
-          a0 += a;
-          a1 += a * u;
-          a2 += a * v;
-          a11 += a * u * u;
-          a22 += a * v * v;
-          a12 += a * u * v;
-        }
+        AreaMoments m;
+        for (std::uint32_t k = first_point[c]; k < first_point[c + 1]; ++k) m.add(s1[k], s2[k], area[k]);
+        const double a0 = m.area, a11 = m.second_11, a22 = m.second_22;
         // What is left of the first moments and the product of area is rounding: relative to the contact's size.
         const double tolerance = 1e-9, size = std::sqrt((a11 + a22) / std::max(a0, 1e-300)) + std::sqrt(a0);
-        const double off_1 = std::abs(a1) / (a0 * size), off_2 = std::abs(a2) / (a0 * size),
-                     off_12 = std::abs(a12) / (a11 + a22 + a0 * a0);
+        const double off_1 = std::abs(m.first_1) / (a0 * size), off_2 = std::abs(m.first_2) / (a0 * size),
+                     off_12 = std::abs(m.second_12) / (a11 + a22 + a0 * a0);
         if (!(off_1 <= tolerance && off_2 <= tolerance && off_12 <= tolerance)) {
           char numbers[160];
           std::snprintf(numbers, sizeof numbers, "sum a x1 = %.3g, sum a x2 = %.3g (of A L), sum a x1 x2 = %.3g (of I); at most %.0e",

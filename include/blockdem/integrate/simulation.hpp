@@ -574,7 +574,7 @@ class Simulation {
       g.properties.push_back(params);
     }
     const std::size_t a = first->a, bb = first->b;
-    // The frame of the CPs' areas: the origin at their centroid, t1 along a principal axis (principal_turn). The
+    // The frame of the CPs' areas: the origin at their centroid, t1 along a principal axis (AreaMoments). The
     // plane coordinates stay small, and a Maxwell field's stiffness is diagonal (damping::Maxwell::contact_stiffness).
     Vec3 origin = Vec3::Zero();
     double total_area = 0;
@@ -587,15 +587,9 @@ class Simulation {
     Vec3 t1 = first->tangent;
     {
       const Vec3 t2 = n.cross(t1);
-      double i11 = 0, i22 = 0, i12 = 0;
-      for (auto c = first; c != last; ++c) {
-        const Vec3 d = c->position - origin;
-        const double x1 = d.dot(t1), x2 = d.dot(t2);
-        i11 += c->area * x1 * x1;
-        i22 += c->area * x2 * x2;
-        i12 += c->area * x1 * x2;
-      }
-      const double turn = principal_turn(i11, i22, i12);
+      AreaMoments moments;
+      for (auto c = first; c != last; ++c) moments.add((c->position - origin).dot(t1), (c->position - origin).dot(t2), c->area);
+      const double turn = moments.principal_turn();
       t1 = (std::cos(turn) * t1 + std::sin(turn) * t2).normalized();
     }
     const Vec3 t2 = n.cross(t1);
