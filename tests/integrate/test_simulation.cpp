@@ -11,6 +11,7 @@
 
 #include "blockdem/contact/elastic.hpp"
 #include "blockdem/contact/mohr_coulomb.hpp"
+#include "blockdem/contact/softening.hpp"
 #include "blockdem/core/units.hpp"
 #include "blockdem/damping/local.hpp"
 #include "blockdem/damping/mass_proportional.hpp"
@@ -319,6 +320,78 @@ TEST_CASE("simulation: Maxwell branches in the contact-field form give the motio
   CHECK(field.energy.viscous > 0);
   CHECK(field.energy.viscous == test::approx(point.energy.viscous).epsilon(1e-8));
   CHECK(field.energy.elastic == test::approx(point.energy.elastic).epsilon(1e-8));
+}
+
+namespace {
+
+/// A slender block settles on its base, is set rocking at step 1000 (one edge lifts, the joint slides) and rocks
+/// until step 3000. Every 100 steps: the forces the output gives at the CPs (area x traction, the traction taken
+/// back from the law's history and the damping state) must add up to the contact's force on B from the contact
+/// pass (1e-9 of the block's weight). Returns how many checks ran in a contact whose CPs kept their own branch
+/// states (a Maxwell field released) and how many with some viscous stress at a CP.
+template <class Damping, class Law>
+std::array<int, 2> tractions_add_up(Damping policy, typename Law::Parameters joint) {
+  auto s = test::block_on_base(0.4, 0.4, 1.0);
+  s.model.gravity = Vec3(0, 0, -9.81);
+  const double weight = 0.16 * 2000 * 9.81;
+  model::ContactSettings contacts;
+  contacts.tolerance = 0.01;
+  Simulation<Damping, Law> sim(s.model, policy, [&](int, int) { return joint; }, contacts);
+  const auto& g = sim.template group<Law>();
+  std::array<int, 2> seen{0, 0};
+  for (int i = 0; i < 3000; ++i) {
+    if (i == 1000) {
+      sim.synchronize();
+      const Vec3 w(0.05, 0.3, 0);
+      s.model.bodies.angular_velocity[s.block] = w;
+      s.model.bodies.velocity[s.block] = w.cross(s.model.bodies.position[s.block]) + Vec3(0.05, 0, 0);
+    }
+    sim.step();
+    if (i % 100 != 99) continue;
+    sim.synchronize();
+    std::vector<Vec3> sum(g.contacts(), Vec3::Zero());
+    std::vector<std::size_t> contact_of;
+    for (std::size_t c = 0; c < g.contacts(); ++c)
+      for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k) contact_of.push_back(c);
+    std::size_t k = 0;
+    bool viscous = false;
+    sim.visit_contacts([&](const auto& v) {
+      sum[contact_of.at(k)] += v.force;
+      const auto law = Law::traction(g.properties[g.property[contact_of[k]]], g.history[k]);
+      viscous = viscous || std::abs(v.normal_stress - law[0]) > 1e-6 * std::abs(law[0]) + 1e-3;
+      ++k;
+    });
+    REQUIRE(k == g.history.size());
+    for (std::size_t c = 0; c < g.contacts(); ++c) {
+      INFO("step " << i << ", contact " << c);
+      CHECK((sum[c] - g.force[c]).norm() <= 1e-9 * weight);
+    }
+    if constexpr (std::remove_cvref_t<decltype(g)>::has_field) seen[0] += g.contacts() > 0 && g.field_form[0] == 0;
+    seen[1] += viscous;
+  }
+  CHECK((s.model.bodies.position[s.block] - test::block_on_base(0.4, 0.4, 1.0).model.bodies.position[1]).norm() > 1e-4);  // it rocked
+  return seen;
+}
+
+}  // namespace
+
+TEST_CASE("output: the CP tractions, taken back from the joint histories and damping states, add up to the contact forces") {
+  // Reference: the contact pass's own resultant of the same stresses (the tractions are no longer stored per CP).
+  const contact::MohrCoulomb::Parameters dry(1e9, 4e8, 0, 0, 0.6);
+  damping::MaxwellFitOptions options;
+  const auto maxwell = damping::to_policy<3>(damping::fit_maxwell(options));
+  auto per_cp = maxwell;
+  per_cp.contact_field = false;
+  CHECK(tractions_add_up<damping::None, contact::Elastic>({}, {1e9, 4e8})[1] == 0);
+  CHECK(tractions_add_up<damping::None, contact::MohrCoulomb>({}, dry)[1] == 0);
+  CHECK(tractions_add_up<damping::MassProportional, contact::MohrCoulomb>(damping::MassProportional::from_damping_ratio(0.05, 5), dry)[1] == 0);
+  CHECK(tractions_add_up<damping::StiffnessProportional, contact::MohrCoulomb>(damping::StiffnessProportional::from_damping_ratio(0.05, 20), dry)[1] > 10);
+  CHECK(tractions_add_up<damping::Rayleigh, contact::MohrCoulomb>(damping::Rayleigh::from_two_frequencies(0.03, 1, 0.03, 40), dry)[1] > 10);
+  const auto field = tractions_add_up<damping::Maxwell<3>, contact::MohrCoulomb>(maxwell, dry);
+  CHECK(field[0] > 5);  // also after the field was released
+  CHECK(field[1] > 10);
+  CHECK(tractions_add_up<damping::Maxwell<3>, contact::MohrCoulomb>(per_cp, dry)[1] > 10);
+  CHECK(tractions_add_up<damping::Maxwell<3>, contact::ElastoSoftening>(maxwell, contact::ElastoSoftening::Parameters::from_material())[1] > 10);
 }
 
 TEST_CASE("contact group: a Maxwell field kept as forces gives back the elongations at the CPs, also when G is singular") {

@@ -22,6 +22,7 @@ struct NotALaw {
 struct NoVelocityUpdate {
   using ContactState = blockdem::damping::NoState;
   double spring_stress(ContactState&, double, double, double, bool, double&) const noexcept { return 0; }
+  static double held_stress(const ContactState&) noexcept { return 0; }
   double timestep_factor(double) const noexcept { return 1; }
 };
 }  // namespace

@@ -9,6 +9,9 @@ namespace blockdem::contact {
 /// Shear components along the contact point's tangent directions t1, t2.
 using Shear = std::array<double, 2>;
 
+/// The traction on B at a contact point in its frame, Pa: normal (compression positive), t1, t2.
+using Traction = std::array<double, 3>;
+
 /// What a law returns for one step of one contact point. Sign conventions: the normal n points from block A to
 /// block B; the gap is positive when the joint is open; `normal_stress` is positive in compression; `shear_stress`
 /// is the traction A exerts on B along t1, t2. The traction on B is normal_stress n + shear_stress_1 t1 + ..., on A
@@ -26,7 +29,9 @@ struct Response {
 /// - `normal_stiffness(params)`, `shear_stiffness(params)`: the elastic stiffnesses, Pa/m, for the timestep;
 /// - `damping_active(params, history)`: false once the joint has failed or while it is open, so that a dashpot
 ///   never acts across an open joint (the damping policy releases its stresses);
-/// - `stored_energy(params, history)`: elastic energy per area in the joint springs, J/m^2.
+/// - `stored_energy(params, history)`: elastic energy per area in the joint springs, J/m^2;
+/// - `traction(params, history) -> Traction`: the stresses the history holds, those the last update returned (to
+///   rounding). The contact pass stores no traction per CP: output asks the history (ContactGroup::traction_at).
 template <class L>
 concept ContactLaw = requires(const typename L::Parameters& p, typename L::History& h, double du, Shear ds) {
   { L::update(p, h, du, ds) } noexcept -> std::same_as<Response>;
@@ -34,6 +39,7 @@ concept ContactLaw = requires(const typename L::Parameters& p, typename L::Histo
   { L::shear_stiffness(p) } noexcept -> std::convertible_to<double>;
   { L::damping_active(p, h) } noexcept -> std::convertible_to<bool>;
   { L::stored_energy(p, h) } noexcept -> std::convertible_to<double>;
+  { L::traction(p, h) } noexcept -> std::same_as<Traction>;
   { h.gap } -> std::convertible_to<double>;
 };
 

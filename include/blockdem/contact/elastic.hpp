@@ -42,6 +42,9 @@ struct Elastic {
     return 0.5 * p.normal_stiffness * h.gap * h.gap +
            0.5 * (h.shear[0] * h.shear[0] + h.shear[1] * h.shear[1]) / p.shear_stiffness;
   }
+  static constexpr Traction traction(const Parameters& p, const History& h) noexcept {
+    return {-p.normal_stiffness * h.gap, h.shear[0], h.shear[1]};
+  }
 };
 
 static_assert(ContactLaw<Elastic>);

@@ -105,6 +105,9 @@ struct MohrCoulomb {
     return 0.5 * h.normal * h.normal / p.normal_stiffness +
            0.5 * (h.shear[0] * h.shear[0] + h.shear[1] * h.shear[1]) / p.shear_stiffness;
   }
+  static constexpr Traction traction(const Parameters&, const History& h) noexcept {
+    return {h.normal, h.shear[0], h.shear[1]};
+  }
 };
 
 static_assert(ContactLaw<MohrCoulomb>);

@@ -389,6 +389,11 @@ struct ElastoSoftening {
   static constexpr double normal_stress(const Parameters& p, const History& h) noexcept {
     return -p.normal_stiffness * (h.gap > 0 ? h.tension_secant : h.compression_secant) * h.gap;
   }
+  /// The secants are kept so that this is the normal stress the step returned (to rounding: after softening or
+  /// crushing, secant = stress / (k_n gap)).
+  static constexpr Traction traction(const Parameters& p, const History& h) noexcept {
+    return {normal_stress(p, h), h.shear[0], h.shear[1]};
+  }
   /// f_t(d), Pa.
   static constexpr double tensile_strength(const Parameters& p, const History& h) noexcept {
     return p.residual_tensile_strength + p.tensile_drop * (1.0 - h.damage);

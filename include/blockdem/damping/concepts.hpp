@@ -13,6 +13,8 @@ namespace blockdem::damping {
 ///   (joint failed or open) it releases its state and returns 0; adds the work its elements received (J/m^2) to
 ///   `dissipated` (policies with springs of their own also provide `stored_energy(state, stiffness)`, which the
 ///   energy report subtracts from that work);
+/// - `held_stress(state) -> double`: the viscous stress (Pa) the state holds, the one spring_stress returned last
+///   while the joint is active (the contact pass stores no traction per CP; output asks the state);
 /// - `velocity_update(v, force, inertia, dt, dissipated) -> double`: the central-difference update of one degree
 ///   of freedom, velocity v (m/s or rad/s) at the half step, force (N or N m), inertia the mass (kg) or principal
 ///   moment of inertia (kg m^2) with its inverse; adds the energy its damping force dissipated (J) to `dissipated`;
@@ -28,6 +30,7 @@ struct Inertia {
 template <class D>
 concept DampingPolicy = requires(const D& d, typename D::ContactState& s, double x, bool active, double& e, Inertia m) {
   { d.spring_stress(s, x, x, x, active, e) } noexcept -> std::same_as<double>;
+  { D::held_stress(s) } noexcept -> std::same_as<double>;
   { d.velocity_update(x, x, m, x, e) } noexcept -> std::same_as<double>;
   { d.timestep_factor(x) } noexcept -> std::convertible_to<double>;
 };

@@ -10,6 +10,7 @@ struct Local {
   double coefficient = 0.8;  // 3DEC's default
   using ContactState = NoState;
   constexpr double spring_stress(ContactState&, double, double, double, bool, double&) const noexcept { return 0.0; }
+  static constexpr double held_stress(const ContactState&) noexcept { return 0.0; }
   constexpr double velocity_update(double v, double force, Inertia mass, double dt, double& dissipated) const noexcept {
     const double magnitude = force < 0 ? -force : force;
     const double damping_force = v > 0 ? -coefficient * magnitude : (v < 0 ? coefficient * magnitude : 0.0);

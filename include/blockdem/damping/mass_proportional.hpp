@@ -22,6 +22,7 @@ struct MassProportional {
   // DampingPolicy: acts on every degree of freedom (translations and rotations), not on the springs.
   using ContactState = NoState;
   constexpr double spring_stress(ContactState&, double, double, double, bool, double&) const noexcept { return 0.0; }
+  static constexpr double held_stress(const ContactState&) noexcept { return 0.0; }
   constexpr double velocity_update(double v, double force, Inertia mass, double dt, double& dissipated) const noexcept {
     return mass_damped_velocity_update(alpha, v, force, mass, dt, dissipated);
   }

@@ -156,6 +156,12 @@ struct Maxwell {
     dissipated += 0.5 * (old_total + total) * du;
     return total;
   }
+  /// The sum of the branch stresses, Pa.
+  static constexpr double held_stress(const ContactState& s) noexcept {
+    double total = 0.0;
+    for (const double branch : s) total += branch;
+    return total;
+  }
   // Branches in parallel with the elastic stiffness D of a whole constant-strain tetrahedron (the paper attaches
   // them to the internal elements as well as the joints): branch i carries a stress tensor S_i with
   // S_i <- S_i e^(-dt/tau_i) + alpha_i tau_i (1 - e^(-dt/tau_i)) D de / dt, the same update as on a spring, applied to

@@ -8,6 +8,7 @@ namespace blockdem::damping {
 struct None {
   using ContactState = NoState;
   constexpr double spring_stress(ContactState&, double, double, double, bool, double&) const noexcept { return 0.0; }
+  static constexpr double held_stress(const ContactState&) noexcept { return 0.0; }
   constexpr double velocity_update(double v, double force, Inertia mass, double dt, double&) const noexcept {
     return undamped_velocity_update(v, force, mass, dt);
   }

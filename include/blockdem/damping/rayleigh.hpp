@@ -42,6 +42,7 @@ struct Rayleigh {
                                  double& dissipated) const noexcept {
     return StiffnessProportional{beta}.spring_stress(previous, stiffness, du, dt, active, dissipated);
   }
+  static constexpr double held_stress(const ContactState& previous) noexcept { return previous; }
   constexpr double velocity_update(double v, double force, Inertia mass, double dt, double& dissipated) const noexcept {
     return MassProportional{alpha}.velocity_update(v, force, mass, dt, dissipated);
   }

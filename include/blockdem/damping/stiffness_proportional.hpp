@@ -38,6 +38,7 @@ struct StiffnessProportional {
     previous = stress;
     return stress;
   }
+  static constexpr double held_stress(const ContactState& previous) noexcept { return previous; }
   constexpr double velocity_update(double v, double force, Inertia mass, double dt, double&) const noexcept {
     return undamped_velocity_update(v, force, mass, dt);
   }

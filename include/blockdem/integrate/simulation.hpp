@@ -723,7 +723,6 @@ class Simulation {
       to.field_form.assign(from.contacts(), damping_.contact_field ? 1 : 0);
       to.field_viscous.assign(from.contacts(), 0.0);
     }
-    to.traction = from.traction;
     to.slip_dissipation.assign(from.size(), 0.0);
     to.viscous_dissipation.assign(from.size(), 0.0);
     to.complete(model_->bodies.size());
@@ -783,7 +782,6 @@ class Simulation {
     const auto* __restrict const properties = g.properties.data();
     auto* __restrict const history = g.history.data();
     auto* __restrict const spring_state = g.spring_state.data();
-    auto* __restrict const traction = g.traction.data();
     double* __restrict const slip_dissipation = g.slip_dissipation.data();
     double* __restrict const viscous_dissipation = g.viscous_dissipation.data();
     auto* __restrict const field = g.field.data();
@@ -858,8 +856,8 @@ class Simulation {
           v[1] = damping.spring_stress(spring[1], ks, e[1], increment_dt, active, dissipated);
           v[2] = damping.spring_stress(spring[2], ks, e[2], increment_dt, active, dissipated);
         }
+        // The traction is not stored: ContactGroup::traction_at() gets it back from the history and the state.
         const double sn = r.normal_stress + v[0], s1 = r.shear_stress[0] + v[1], s2 = r.shear_stress[1] + v[2];
-        traction[k] = {sn, s1, s2};
         add_cp_force(x1, x2, area * sn, area * s1, area * s2, fn, f1, f2, mn, m1, m2);
         // Only what can be non-zero is stored: a law or a policy that never dissipates costs no memory traffic here.
         if constexpr (!std::is_same_v<L, contact::Elastic>) slip_dissipation[k] += area * r.dissipated;
@@ -906,8 +904,6 @@ class Simulation {
             double dissipated = 0.0;
             const auto v = damping.spring_stresses(spring_state[k], kn, ks, e, increment_dt,
                                                    L::damping_active(p, history[k]), dissipated);
-            auto& t = traction[k];
-            t = {t[0] + v[0], t[1] + v[1], t[2] + v[2]};
             const double area = area_of[k];
             add_cp_force(x1, x2, area * v[0], area * v[1], area * v[2], fn, f1, f2, mn, m1, m2);
             viscous_dissipation[k] += area * dissipated;
