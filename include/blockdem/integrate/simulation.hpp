@@ -791,6 +791,9 @@ class Simulation {
     const auto count = static_cast<std::ptrdiff_t>(g.contacts());
     const Damping& damping = damping_;
     const double h = 0.5 * increment_dt;
+    // Whether the CP loop evaluates viscous stresses per CP (not for None, MassProportional, Local, nor for a
+    // contact field, which acts on the contact's resultant).
+    constexpr bool cp_viscous = !G::has_field && !std::is_same_v<typename Damping::ContactState, damping::NoState>;
 #pragma omp parallel for schedule(static) if (count > 256)
     for (std::ptrdiff_t cc = 0; cc < count; ++cc) {
       const auto c = static_cast<std::size_t>(cc);
@@ -857,12 +860,18 @@ class Simulation {
           v[2] = damping.spring_stress(spring[2], ks, e[2], increment_dt, active, dissipated);
         }
         // The traction is not stored: ContactGroup::traction_at() gets it back from the history and the state.
-        const double sn = r.normal_stress + v[0], s1 = r.shear_stress[0] + v[1], s2 = r.shear_stress[1] + v[2];
+        // Policies without viscous stresses at the CP do not add v's zeros (x + 0.0 is not x for x = -0.0, so the
+        // compiler keeps the additions).
+        double sn = r.normal_stress, s1 = r.shear_stress[0], s2 = r.shear_stress[1];
+        if constexpr (cp_viscous) {
+          sn += v[0];
+          s1 += v[1];
+          s2 += v[2];
+        }
         add_cp_force(x1, x2, area * sn, area * s1, area * s2, fn, f1, f2, mn, m1, m2);
         // Only what can be non-zero is stored: a law or a policy that never dissipates costs no memory traffic here.
         if constexpr (!std::is_same_v<L, contact::Elastic>) slip_dissipation[k] += area * r.dissipated;
-        if constexpr (!G::has_field && !std::is_same_v<typename Damping::ContactState, damping::NoState>)
-          viscous_dissipation[k] += area * dissipated;
+        if constexpr (cp_viscous) viscous_dissipation[k] += area * dissipated;
       }
       if constexpr (G::has_field) {
         if (in_field) {
