@@ -127,7 +127,7 @@ struct ContactGroup {
   std::vector<double> area;              // m^2
   std::vector<History> history;
   std::vector<SpringState> spring_state;
-  // No traction per CP: the contact pass would write 24 bytes per CP-step for output only (7-10 % of an Elastic
+  // No traction per CP: the contact pass would write 24 bytes per CP-step for output only (6-10 % of an Elastic
   // step). traction_at() asks the law's history and the damping state, which hold it.
   std::vector<double> slip_dissipation;     // J, accumulated
   std::vector<double> viscous_dissipation;  // J, accumulated
