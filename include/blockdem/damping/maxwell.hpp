@@ -386,8 +386,8 @@ struct Maxwell {
   }
   /// The per-CP branch stresses K B(x1, x2) h_i at (x1, x2) of a field in elongation form (h_i, one per branch):
   /// s[direction][branch].
-  std::array<ContactState, 3> field_branch_stresses(const std::array<Generalised, static_cast<std::size_t>(N)>& f, double kn,
-                                                    double ks, double x1, double x2) const noexcept {
+  static std::array<ContactState, 3> field_branch_stresses(const std::array<Generalised, static_cast<std::size_t>(N)>& f,
+                                                           double kn, double ks, double x1, double x2) noexcept {
     std::array<ContactState, 3> s{};
     for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i) {
       const auto branch = field_stress(f[i], kn, ks, x1, x2);

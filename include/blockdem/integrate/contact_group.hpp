@@ -5,7 +5,8 @@
 // frame (n, t1, t2) and its origin, fixed in block A (the origin at the area centroid of the CPs, t1 along a
 // principal axis of their areas: AreaMoments); the relative motion of the two blocks, reduced to an affine
 // map of the CP's plane coordinates; the resultant force and moments. Per CP remain two plane coordinates, the
-// area, the law's history, the damping policy's spring state and the traction.
+// area, the law's history and the damping policy's spring state; the traction is not stored but taken back from
+// those two (traction_at).
 
 #include <algorithm>
 #include <array>
@@ -177,11 +178,11 @@ struct ContactGroup {
   }
 
   /// The branch state of CP k of contact c, whichever form holds it.
-  SpringState spring_at(const Damping& damping, std::size_t c, std::size_t k) const {
+  SpringState spring_at(std::size_t c, std::size_t k) const {
     if constexpr (has_field) {
       if (field_form[c]) {
         const auto& p = properties[property[c]];
-        return damping.field_branch_stresses(field_elongations(c), Law::normal_stiffness(p), Law::shear_stiffness(p), s1[k], s2[k]);
+        return Damping::field_branch_stresses(field_elongations(c), Law::normal_stiffness(p), Law::shear_stiffness(p), s1[k], s2[k]);
       }
     }
     return spring_state[k];
@@ -194,17 +195,8 @@ struct ContactGroup {
     const auto& p = properties[property[c]];
     Traction t = Law::traction(p, history[k]);
     if (!Law::damping_active(p, history[k])) return t;
-    if constexpr (has_field) {
-      if (field_form[c]) {
-        typename Damping::Generalised sum{};
-        for (const auto& h : field_elongations(c))
-          for (std::size_t j = 0; j < 6; ++j) sum[j] += h[j];
-        const auto v = Damping::field_stress(sum, Law::normal_stiffness(p), Law::shear_stiffness(p), s1[k], s2[k]);
-        for (std::size_t j = 0; j < 3; ++j) t[j] += v[j];
-        return t;
-      }
-    }
-    for (std::size_t j = 0; j < 3; ++j) t[j] += Damping::held_stress(spring_state[k][j]);
+    const SpringState spring = spring_at(c, k);
+    for (std::size_t j = 0; j < 3; ++j) t[j] += Damping::held_stress(spring[j]);
     return t;
   }
 

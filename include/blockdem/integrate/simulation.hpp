@@ -588,7 +588,10 @@ class Simulation {
     {
       const Vec3 t2 = n.cross(t1);
       AreaMoments moments;
-      for (auto c = first; c != last; ++c) moments.add((c->position - origin).dot(t1), (c->position - origin).dot(t2), c->area);
+      for (auto c = first; c != last; ++c) {
+        const Vec3 d = c->position - origin;
+        moments.add(d.dot(t1), d.dot(t2), c->area);
+      }
       const double turn = moments.principal_turn();
       t1 = (std::cos(turn) * t1 + std::sin(turn) * t2).normalized();
     }
@@ -899,7 +902,7 @@ class Simulation {
             if (increment_dt > 0.0) {
               for (std::uint32_t k = begin; k < end; ++k)
                 spring_state[k] = L::damping_active(p, history[k])
-                                      ? damping.field_branch_stresses(elongations, kn, ks, plane_1[k], plane_2[k])
+                                      ? Damping::field_branch_stresses(elongations, kn, ks, plane_1[k], plane_2[k])
                                       : typename G::SpringState{};
               field_form[c] = 0;
             }
@@ -1218,7 +1221,7 @@ class Simulation {
         const auto& p = g.properties[g.property[c]];
         if constexpr (std::remove_cvref_t<decltype(g)>::has_field) e.viscous += g.field_viscous[c];
         for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k)
-          add_contact_point_energy<L>(damping_, p, g.history[k], g.spring_at(damping_, c, k), g.area[k], g.slip_dissipation[k],
+          add_contact_point_energy<L>(damping_, p, g.history[k], g.spring_at(c, k), g.area[k], g.slip_dissipation[k],
                                       g.viscous_dissipation[k], e.elastic, e.slip, e.viscous);
       }
     });
