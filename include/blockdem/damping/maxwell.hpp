@@ -306,47 +306,56 @@ struct Maxwell {
   /// (the reference the field form is tested against).
   bool contact_field = true;
 
-  /// What advance_field returns: the generalised force of the field on the contact at the end of the step,
-  /// sum_i F_i (N, N m), and the field's work over the step, sum over CPs of a (old + new) / 2 . B q
-  /// = q . sum_i (F_i before + F_i after) / 2 (J).
-  struct FieldStep {
-    Generalised resultant;
-    double work;
-  };
-  /// Advances the field of a contact of stiffness diag(g) (contact_stiffness) by the step dt (s) under the
-  /// generalised elongation increment q; no change when dt <= 0 (no time passes).
+  /// The viscous work of a contact's field (J), kept as twice its value in four partial sums, so that a step adds
+  /// one vector and no horizontal sum (field_work gives the work).
+  using FieldWork = std::array<double, 4>;
+  static constexpr double field_work(const FieldWork& w) noexcept { return 0.5 * ((w[0] + w[1]) + (w[2] + w[3])); }
+  static constexpr FieldWork field_work_of(double work) noexcept { return {2.0 * work, 0.0, 0.0, 0.0}; }
+  /// The generalised force of a field on its contact, sum_i F_i (N, N m): kept in the last slot.
+  static Generalised field_force(const ContactField& f) noexcept {
+    const auto& r = f[static_cast<std::size_t>(N - 1)];
+    return {r[0], r[1], r[2], r[3], r[4], r[5]};
+  }
+  /// Advances the field of a contact of stiffness diag(g) (contact_stiffness) by one step of the timestep prepared
+  /// for (prepare; only when time passes: with none, the field is unchanged and field_force gives its force) under
+  /// the contact's generalised displacement increment du = -q (du0 at the origin, relative rotation w; the contact
+  /// pass's increments as they are, closing and sliding positive), adds the field's work over the step,
+  /// sum over CPs of a (old + new) / 2 . B q = q . sum_i (F_i before + F_i after) / 2, to `work` and returns the
+  /// generalised force at the end of the step, sum_i F_i (N, N m).
   ///
-  /// In vectors of four lanes, a branch in two. Inlined, so that q and the sums stay in registers: a vector read
+  /// In vectors of four lanes, a branch in two. Inlined, so that du and the sums stay in registers: a vector read
   /// back from scalar stores, or scalars from a vector store, waits for the stores to complete (no store
-  /// forwarding).
-  [[gnu::always_inline]] FieldStep advance_field(ContactField& f, const Generalised& q, const FieldStiffness& g,
-                                                 double dt) const noexcept {
-    const Quad q0 = {q[0], q[1], q[2], q[3]}, q1 = {q[4], q[5], 0.0, 0.0};
+  /// forwarding). Taking du instead of q saves negating six numbers per step: G q = -G du, and q . R = -du . R.
+  [[gnu::always_inline]] Generalised advance_field(ContactField& f, FieldWork& work, const Generalised& du,
+                                                   const FieldStiffness& g) const noexcept {
+    const Quad u0 = {du[0], du[1], du[2], du[3]}, u1 = {du[4], du[5], 0.0, 0.0};
     Quad d0, d1;
     std::memcpy(&d0, g.data(), sizeof d0);
     std::memcpy(&d1, g.data() + 4, sizeof d1);
-    const Quad g0 = d0 * q0, g1 = d1 * q1;  // G q
+    const Quad g0 = d0 * u0, g1 = d1 * u1;  // G du = -G q
     constexpr std::size_t last = static_cast<std::size_t>(N - 1);
     Quad r0, r1;  // sum_i F_i before the step
     std::memcpy(&r0, f[last].data(), sizeof r0);
     std::memcpy(&r1, f[last].data() + 4, sizeof r1);
-    if (!(dt > 0.0)) return {{r0[0], r0[1], r0[2], r0[3], r1[0], r1[1]}, 0.0};
-    Quad n0 = r0 * decay_[last] + gain_sum_ * g0, n1 = r1 * decay_[last] + gain_sum_ * g1;
+    Quad n0 = r0 * decay_[last] - gain_sum_ * g0, n1 = r1 * decay_[last] - gain_sum_ * g1;
     for (std::size_t i = 0; i < last; ++i) {
       Quad f0, f1;
       std::memcpy(&f0, f[i].data(), sizeof f0);
       std::memcpy(&f1, f[i].data() + 4, sizeof f1);
       n0 += decay_excess_[i] * f0;
       n1 += decay_excess_[i] * f1;
-      f0 = f0 * decay_[i] + gain_[i] * g0;
-      f1 = f1 * decay_[i] + gain_[i] * g1;
+      f0 = f0 * decay_[i] - gain_[i] * g0;
+      f1 = f1 * decay_[i] - gain_[i] * g1;
       std::memcpy(f[i].data(), &f0, sizeof f0);
       std::memcpy(f[i].data() + 4, &f1, sizeof f1);
     }
     std::memcpy(f[last].data(), &n0, sizeof n0);
     std::memcpy(f[last].data() + 4, &n1, sizeof n1);
-    const Quad w = (r0 + n0) * q0 + (r1 + n1) * q1;
-    return {{n0[0], n0[1], n0[2], n0[3], n1[0], n1[1]}, 0.5 * ((w[0] + w[1]) + (w[2] + w[3]))};
+    Quad w;  // twice the work, q . (R before + R after), in four partial sums
+    std::memcpy(&w, work.data(), sizeof w);
+    w -= (r0 + n0) * u0 + (r1 + n1) * u1;
+    std::memcpy(work.data(), &w, sizeof w);
+    return {n0[0], n0[1], n0[2], n0[3], n1[0], n1[1]};
   }
   /// The branches' forces F_i of a field (N, N m): the last one from the sum the field keeps.
   static std::array<Generalised, static_cast<std::size_t>(N)> branch_forces(const ContactField& f) noexcept {

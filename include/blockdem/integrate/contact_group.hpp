@@ -78,7 +78,7 @@ template <class Damping>
 struct ContactFieldOf {
   using type = damping::NoState;
   using sum = damping::NoState;
-  using step = damping::NoState;
+  using work = damping::NoState;
   using stiffness = damping::NoState;
   static constexpr bool present = false;
 };
@@ -87,7 +87,7 @@ template <class Damping>
 struct ContactFieldOf<Damping> {
   using type = typename Damping::ContactField;
   using sum = typename Damping::Generalised;
-  using step = typename Damping::FieldStep;
+  using work = typename Damping::FieldWork;
   using stiffness = typename Damping::FieldStiffness;
   static constexpr bool present = true;
 };
@@ -115,10 +115,10 @@ struct ContactGroup {
   static constexpr bool has_field = detail::ContactFieldOf<Damping>::present;
   using Field = typename detail::ContactFieldOf<Damping>::type;
   using FieldSum = typename detail::ContactFieldOf<Damping>::sum;    // sum over the branches of a field
-  using FieldStep = typename detail::ContactFieldOf<Damping>::step;  // what advancing a field gives
+  using FieldWork = typename detail::ContactFieldOf<Damping>::work;  // a field's viscous work (Damping::field_work)
   std::vector<Field> field;
   std::vector<std::uint8_t> field_form;
-  std::vector<double> field_viscous;  // J, the viscous work of the branches while in the field form, accumulated
+  std::vector<FieldWork> field_viscous;  // the viscous work of the branches while in the field form, accumulated
   // The diagonal of the contact's stiffness G on its generalised elongation, from the area moments of its CPs
   // (complete(); diagonal because the frame is the CPs' principal one).
   std::vector<typename detail::ContactFieldOf<Damping>::stiffness> field_stiffness;
@@ -149,7 +149,7 @@ struct ContactGroup {
     if constexpr (has_field) {
       field.push_back(f);
       field_form.push_back(in_field_form ? 1 : 0);
-      field_viscous.push_back(viscous);
+      field_viscous.push_back(Damping::field_work_of(viscous));
     }
     body_a.push_back(a);
     body_b.push_back(b);

@@ -524,7 +524,7 @@ class Simulation {
     std::apply([&](const auto&... g) {
       ((old_slip += std::accumulate(g.slip_dissipation.begin(), g.slip_dissipation.end(), 0.0),
         old_viscous += std::accumulate(g.viscous_dissipation.begin(), g.viscous_dissipation.end(), 0.0) +
-                       std::accumulate(g.field_viscous.begin(), g.field_viscous.end(), 0.0)), ...);
+                       field_viscous_work(g)), ...);
     }, old);
     std::map<std::pair<int, int>, Properties> chosen;
     for (std::size_t begin = 0, end = 0; begin < candidates.size(); begin = end) {
@@ -550,6 +550,15 @@ class Simulation {
   }
 
   static std::uint64_t pair_key(std::size_t a, std::size_t b) { return (std::uint64_t{a} << 32) | std::uint64_t{b}; }
+
+  /// The viscous work of a group's fields (J; 0 without fields).
+  template <class G>
+  static double field_viscous_work(const G& g) {
+    double w = 0.0;
+    if constexpr (G::has_field)
+      for (const auto& f : g.field_viscous) w += Damping::field_work(f);
+    return w;
+  }
 
   template <class G>
   static std::unordered_map<std::uint64_t, std::uint32_t> contacts_by_pair(const G& g) {
@@ -614,7 +623,7 @@ class Simulation {
     if constexpr (Group<L>::has_field) {
       in_field_form = o ? o->field_form[oc] != 0 : damping_.contact_field;
       if (o) {
-        field_viscous = o->field_viscous[oc];
+        field_viscous = Damping::field_work(o->field_viscous[oc]);
         carried_viscous += field_viscous;
       }
       if (o && in_field_form) {
@@ -724,7 +733,7 @@ class Simulation {
     if constexpr (To::has_field) {
       to.field.assign(from.contacts(), typename To::Field{});
       to.field_form.assign(from.contacts(), damping_.contact_field ? 1 : 0);
-      to.field_viscous.assign(from.contacts(), 0.0);
+      to.field_viscous.assign(from.contacts(), typename To::FieldWork{});
     }
     to.slip_dissipation.assign(from.size(), 0.0);
     to.viscous_dissipation.assign(from.size(), 0.0);
@@ -757,11 +766,27 @@ class Simulation {
     m2 += r[5];
   }
 
-  /// The fused contact loop of one law. Per contact: the frame and the relative motion of the two blocks, reduced
-  /// to the displacement increment at the origin and the relative rotation; per CP: the increment by four
-  /// multiply-adds -> law -> damping -> traction, summed into the contact's force and moments.
+  /// The fused contact loop of one law (contact_pass_of). Groups with Maxwell fields get the loop compiled twice,
+  /// for steps in which time passes and for those in which none does (increment_dt 0: the forces of the present
+  /// state only), so that the loop has no branch on it per contact.
   template <class G>
   void contact_pass(G& g, double increment_dt) {
+    if constexpr (G::has_field) {
+      if (increment_dt > 0.0)
+        contact_pass_of<true>(g, increment_dt);
+      else
+        contact_pass_of<false>(g, increment_dt);
+    } else {
+      contact_pass_of<true>(g, increment_dt);
+    }
+  }
+
+  /// The fused contact loop of one law. Per contact: the frame and the relative motion of the two blocks, reduced
+  /// to the displacement increment at the origin and the relative rotation; per CP: the increment by four
+  /// multiply-adds -> law -> damping -> traction, summed into the contact's force and moments. AdvanceFields:
+  /// whether time passes for the Maxwell fields (contact_pass; no use without fields).
+  template <bool AdvanceFields, class G>
+  void contact_pass_of(G& g, double increment_dt) {
     using L = typename G::LawType;
     auto& b = model_->bodies;
     // Raw restrict pointers: the stores of one CP cannot alias the arrays read for the next, so the compiler keeps
@@ -788,7 +813,7 @@ class Simulation {
     double* __restrict const slip_dissipation = g.slip_dissipation.data();
     double* __restrict const viscous_dissipation = g.viscous_dissipation.data();
     auto* __restrict const field = g.field.data();
-    double* __restrict const field_viscous = g.field_viscous.data();
+    auto* __restrict const field_viscous = g.field_viscous.data();
     std::uint8_t* __restrict const field_form = g.field_form.data();
     const auto* __restrict const field_stiffness = g.field_stiffness.data();
     const auto count = static_cast<std::ptrdiff_t>(g.contacts());
@@ -878,11 +903,14 @@ class Simulation {
       }
       if constexpr (G::has_field) {
         if (in_field) {
-          const typename G::FieldSum q{-du0_n, -du0_1, -du0_2, -w_n, -w_1, -w_2};
-          const auto field_step = damping.advance_field(field[c], q, field_stiffness[c], increment_dt);
-          add_resultant(field_step.resultant, fn, f1, f2, mn, m1, m2);
-          double field_work = field_step.work;
+          const typename G::FieldSum du0{du0_n, du0_1, du0_2, w_n, w_1, w_2};
+          if constexpr (AdvanceFields)
+            add_resultant(damping.advance_field(field[c], field_viscous[c], du0, field_stiffness[c]), fn, f1, f2, mn, m1, m2);
+          else
+            add_resultant(Damping::field_force(field[c]), fn, f1, f2, mn, m1, m2);
           if (inactive) [[unlikely]] {
+            const typename G::FieldSum q{-du0_n, -du0_1, -du0_2, -w_n, -w_1, -w_2};
+            double field_work = 0.0;
             // A CP that failed or opened releases its branches: its new stress is 0, and its work over the step
             // is that of its old stress only. (With no time passing, its branches only stop acting: nothing is
             // released.) From the next step on every CP of the contact keeps its own branch states, from the
@@ -899,15 +927,15 @@ class Simulation {
               field_work -= 0.5 * area * (now[0] * e[0] + now[1] * e[1] + now[2] * e[2]);
               add_cp_force(x1, x2, -area * now[0], -area * now[1], -area * now[2], fn, f1, f2, mn, m1, m2);
             }
-            if (increment_dt > 0.0) {
+            if constexpr (AdvanceFields) {
               for (std::uint32_t k = begin; k < end; ++k)
                 spring_state[k] = L::damping_active(p, history[k])
                                       ? Damping::field_branch_stresses(elongations, kn, ks, plane_1[k], plane_2[k])
                                       : typename G::SpringState{};
               field_form[c] = 0;
             }
+            field_viscous[c][0] += 2.0 * field_work;  // FieldWork: twice the work
           }
-          field_viscous[c] += field_work;
         } else {
           // The CPs' own branch states, after the law has updated every CP's history.
           for (std::uint32_t k = begin; k < end; ++k) {
@@ -1219,7 +1247,7 @@ class Simulation {
       using L = typename std::remove_cvref_t<decltype(g)>::LawType;
       for (std::size_t c = 0; c < g.contacts(); ++c) {
         const auto& p = g.properties[g.property[c]];
-        if constexpr (std::remove_cvref_t<decltype(g)>::has_field) e.viscous += g.field_viscous[c];
+        if constexpr (std::remove_cvref_t<decltype(g)>::has_field) e.viscous += Damping::field_work(g.field_viscous[c]);
         for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k)
           add_contact_point_energy<L>(damping_, p, g.history[k], g.spring_at(c, k), g.area[k], g.slip_dissipation[k],
                                       g.viscous_dissipation[k], e.elastic, e.slip, e.viscous);
