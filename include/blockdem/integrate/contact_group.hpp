@@ -73,13 +73,21 @@ struct AreaMoments {
 };
 
 namespace detail {
-/// The per-contact branch state of policies with a contact-field form (damping::Maxwell::ContactField), else none.
+/// What a contact of a policy with a contact-field form (damping::Maxwell::ContactField) keeps of its field, in one
+/// record: the contact pass reads and writes it through one pointer, and its vectors of four lanes never straddle a
+/// cache line (the three parts are whole multiples of 32 bytes).
+template <class Damping>
+struct alignas(32) FieldRecord {
+  typename Damping::ContactField forces{};       // the branch forces F_i, the last slot their sum (N, N m)
+  typename Damping::FieldStiffness stiffness{};  // diag G, from the area moments of the CPs (complete())
+  typename Damping::FieldWork work{};            // the branches' viscous work while in the field form (field_work)
+};
+/// The per-contact branch state of policies with a contact-field form, else none.
 template <class Damping>
 struct ContactFieldOf {
   using type = damping::NoState;
   using sum = damping::NoState;
-  using work = damping::NoState;
-  using stiffness = damping::NoState;
+  using record = damping::NoState;
   static constexpr bool present = false;
 };
 template <class Damping>
@@ -87,8 +95,7 @@ template <class Damping>
 struct ContactFieldOf<Damping> {
   using type = typename Damping::ContactField;
   using sum = typename Damping::Generalised;
-  using work = typename Damping::FieldWork;
-  using stiffness = typename Damping::FieldStiffness;
+  using record = FieldRecord<Damping>;
   static constexpr bool present = true;
 };
 }  // namespace detail
@@ -111,17 +118,16 @@ struct ContactGroup {
   std::vector<Vec3> force;               // N, world frame, on B (A gets the opposite)
   std::vector<Vec3> moment;              // N m, world frame: [2c] on A about A's centroid, [2c + 1] on B about B's
   // Policies with a contact-field form (Maxwell): while field_form[c] is 1, the branch state of contact c is
-  // field[c] and its CPs' spring_state is unused; once a CP has released its branches, the CPs' spring_state.
+  // field[c].forces and its CPs' spring_state is unused; once a CP has released its branches, the CPs'
+  // spring_state. field[c].stiffness is the diagonal of the contact's stiffness G on its generalised elongation
+  // (complete(); diagonal because the frame is the CPs' principal one); field[c].work the branches' viscous work
+  // while in the field form (Damping::field_work), kept also after.
   static constexpr bool has_field = detail::ContactFieldOf<Damping>::present;
   using Field = typename detail::ContactFieldOf<Damping>::type;
-  using FieldSum = typename detail::ContactFieldOf<Damping>::sum;    // sum over the branches of a field
-  using FieldWork = typename detail::ContactFieldOf<Damping>::work;  // a field's viscous work (Damping::field_work)
-  std::vector<Field> field;
+  using FieldSum = typename detail::ContactFieldOf<Damping>::sum;  // sum over the branches of a field
+  using FieldRecord = typename detail::ContactFieldOf<Damping>::record;
+  std::vector<FieldRecord> field;
   std::vector<std::uint8_t> field_form;
-  std::vector<FieldWork> field_viscous;  // the viscous work of the branches while in the field form, accumulated
-  // The diagonal of the contact's stiffness G on its generalised elongation, from the area moments of its CPs
-  // (complete(); diagonal because the frame is the CPs' principal one).
-  std::vector<typename detail::ContactFieldOf<Damping>::stiffness> field_stiffness;
 
   // Per contact point.
   std::vector<double> s1, s2;            // m, coordinates on the contact plane from the origin along t1, t2
@@ -147,9 +153,8 @@ struct ContactGroup {
   void begin_contact(std::uint32_t a, std::uint32_t b, std::uint16_t p, const Vec3& origin, const Vec3& normal,
                      const Vec3& tangent, bool in_field_form = false, const Field& f = Field{}, double viscous = 0.0) {
     if constexpr (has_field) {
-      field.push_back(f);
+      field.push_back({f, {}, Damping::field_work_of(viscous)});
       field_form.push_back(in_field_form ? 1 : 0);
-      field_viscous.push_back(Damping::field_work_of(viscous));
     }
     body_a.push_back(a);
     body_b.push_back(b);
@@ -170,8 +175,8 @@ struct ContactGroup {
   /// and B h_i, the elongation at each CP, is that of the h_i given (a CP on the line does not move in a turn about
   /// it).
   auto field_elongations(std::size_t c) const {
-    auto h = Damping::branch_forces(field[c]);
-    const auto& g = field_stiffness[c];
+    auto h = Damping::branch_forces(field[c].forces);
+    const auto& g = field[c].stiffness;
     for (auto& branch : h)
       for (std::size_t j = 0; j < 6; ++j) branch[j] = g[j] > 0.0 ? branch[j] / g[j] : 0.0;
     return h;
@@ -218,7 +223,6 @@ struct ContactGroup {
   /// their areas (InvalidArgument otherwise, naming the contact).
   void complete(std::size_t blocks) {
     if constexpr (has_field) {
-      field_stiffness.assign(contacts(), {});
       for (std::size_t c = 0; c < contacts(); ++c) {
         AreaMoments m;
         for (std::uint32_t k = first_point[c]; k < first_point[c + 1]; ++k) m.add(s1[k], s2[k], area[k]);
@@ -236,11 +240,12 @@ struct ContactGroup {
                                 "centroid of the CPs and t1 along a principal axis of their areas; " + numbers);
         }
         const auto& p = properties[property[c]];
-        field_stiffness[c] = Damping::contact_stiffness(a0, a11, a22, Law::normal_stiffness(p), Law::shear_stiffness(p));
+        auto& record = field[c];
+        record.stiffness = Damping::contact_stiffness(a0, a11, a22, Law::normal_stiffness(p), Law::shear_stiffness(p));
         std::array<typename Damping::Generalised, std::tuple_size_v<Field>> forces{};  // F = G h (begin_contact: h)
         for (std::size_t b = 0; b < forces.size(); ++b)
-          for (std::size_t j = 0; j < 6; ++j) forces[b][j] = field_stiffness[c][j] * field[c][b][j];
-        field[c] = Damping::field_of(forces);
+          for (std::size_t j = 0; j < 6; ++j) forces[b][j] = record.stiffness[j] * record.forces[b][j];
+        record.forces = Damping::field_of(forces);
       }
     }
     first.assign(blocks + 1, 0);

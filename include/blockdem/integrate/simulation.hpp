@@ -556,7 +556,7 @@ class Simulation {
   static double field_viscous_work(const G& g) {
     double w = 0.0;
     if constexpr (G::has_field)
-      for (const auto& f : g.field_viscous) w += Damping::field_work(f);
+      for (const auto& f : g.field) w += Damping::field_work(f.work);
     return w;
   }
 
@@ -623,7 +623,7 @@ class Simulation {
     if constexpr (Group<L>::has_field) {
       in_field_form = o ? o->field_form[oc] != 0 : damping_.contact_field;
       if (o) {
-        field_viscous = Damping::field_work(o->field_viscous[oc]);
+        field_viscous = Damping::field_work(o->field[oc].work);
         carried_viscous += field_viscous;
       }
       if (o && in_field_form) {
@@ -731,9 +731,8 @@ class Simulation {
     to.history = from.history;
     to.spring_state.assign(from.size(), typename To::SpringState{});
     if constexpr (To::has_field) {
-      to.field.assign(from.contacts(), typename To::Field{});
+      to.field.assign(from.contacts(), typename To::FieldRecord{});
       to.field_form.assign(from.contacts(), damping_.contact_field ? 1 : 0);
-      to.field_viscous.assign(from.contacts(), typename To::FieldWork{});
     }
     to.slip_dissipation.assign(from.size(), 0.0);
     to.viscous_dissipation.assign(from.size(), 0.0);
@@ -813,9 +812,7 @@ class Simulation {
     double* __restrict const slip_dissipation = g.slip_dissipation.data();
     double* __restrict const viscous_dissipation = g.viscous_dissipation.data();
     auto* __restrict const field = g.field.data();
-    auto* __restrict const field_viscous = g.field_viscous.data();
     std::uint8_t* __restrict const field_form = g.field_form.data();
-    const auto* __restrict const field_stiffness = g.field_stiffness.data();
     const auto count = static_cast<std::ptrdiff_t>(g.contacts());
     const Damping& damping = damping_;
     const double h = 0.5 * increment_dt;
@@ -905,9 +902,9 @@ class Simulation {
         if (in_field) {
           const typename G::FieldSum du0{du0_n, du0_1, du0_2, w_n, w_1, w_2};
           if constexpr (AdvanceFields)
-            add_resultant(damping.advance_field(field[c], field_viscous[c], du0, field_stiffness[c]), fn, f1, f2, mn, m1, m2);
+            add_resultant(damping.advance_field(field[c].forces, field[c].work, du0, field[c].stiffness), fn, f1, f2, mn, m1, m2);
           else
-            add_resultant(Damping::field_force(field[c]), fn, f1, f2, mn, m1, m2);
+            add_resultant(Damping::field_force(field[c].forces), fn, f1, f2, mn, m1, m2);
           if (inactive) [[unlikely]] {
             const typename G::FieldSum q{-du0_n, -du0_1, -du0_2, -w_n, -w_1, -w_2};
             double field_work = 0.0;
@@ -934,7 +931,7 @@ class Simulation {
                                       : typename G::SpringState{};
               field_form[c] = 0;
             }
-            field_viscous[c][0] += 2.0 * field_work;  // FieldWork: twice the work
+            field[c].work[0] += 2.0 * field_work;  // FieldWork: twice the work
           }
         } else {
           // The CPs' own branch states, after the law has updated every CP's history.
@@ -1247,7 +1244,7 @@ class Simulation {
       using L = typename std::remove_cvref_t<decltype(g)>::LawType;
       for (std::size_t c = 0; c < g.contacts(); ++c) {
         const auto& p = g.properties[g.property[c]];
-        if constexpr (std::remove_cvref_t<decltype(g)>::has_field) e.viscous += Damping::field_work(g.field_viscous[c]);
+        if constexpr (std::remove_cvref_t<decltype(g)>::has_field) e.viscous += Damping::field_work(g.field[c].work);
         for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k)
           add_contact_point_energy<L>(damping_, p, g.history[k], g.spring_at(c, k), g.area[k], g.slip_dissipation[k],
                                       g.viscous_dissipation[k], e.elastic, e.slip, e.viscous);
