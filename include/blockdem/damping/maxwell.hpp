@@ -353,7 +353,8 @@ struct Maxwell {
     std::memcpy(f[last].data() + 4, &n1, sizeof n1);
     Quad w;  // twice the work, q . (R before + R after), in four partial sums
     std::memcpy(&w, work.data(), sizeof w);
-    w -= (r0 + n0) * u0 + (r1 + n1) * u1;
+    w -= (r0 + n0) * u0;
+    w -= (r1 + n1) * u1;
     std::memcpy(work.data(), &w, sizeof w);
     return {n0[0], n0[1], n0[2], n0[3], n1[0], n1[1]};
   }
