@@ -863,41 +863,48 @@ class Simulation {
       // branch states (field_form 0, after a CP released its branches) adds them in a second CP loop below.
       [[maybe_unused]] const bool in_field = G::has_field && field_form[c] != 0;
       [[maybe_unused]] bool inactive = false;
-      for (std::uint32_t k = begin; k < end; ++k) {
-        const double x1 = plane_1[k], x2 = plane_2[k];
-        const double du_n = du0_n + x2 * w_1 - x1 * w_2;
-        const contact::Shear du_s{du0_1 - x2 * w_n, du0_2 + x1 * w_n};
-        const contact::Response r = L::update(p, history[k], du_n, du_s);
-        const bool active = L::damping_active(p, history[k]);
-        const double area = area_of[k];
-        double dissipated = 0.0;
-        // Spring elongations in the sense of the stresses: closing the gap compresses, shear stress opposes du_s.
-        [[maybe_unused]] const std::array<double, 3> e{-du_n, -du_s[0], -du_s[1]};
-        std::array<double, 3> v{0.0, 0.0, 0.0};  // viscous stresses, Pa
-        if constexpr (G::has_field) {
-          inactive = inactive || !active;
-        } else if constexpr (requires { damping.spring_stresses(spring_state[k], kn, ks, e, increment_dt, active, dissipated); }) {
-          v = damping.spring_stresses(spring_state[k], kn, ks, e, increment_dt, active, dissipated);
-        } else {
-          auto& spring = spring_state[k];
-          v[0] = damping.spring_stress(spring[0], kn, e[0], increment_dt, active, dissipated);
-          v[1] = damping.spring_stress(spring[1], ks, e[1], increment_dt, active, dissipated);
-          v[2] = damping.spring_stress(spring[2], ks, e[2], increment_dt, active, dissipated);
+      // The CP loop through restrict parameters: GCC honours restrict on parameters, not on the local pointers above,
+      // and without it guards the loop with a run-time check that the histories do not overlap the CPs' coordinates.
+      [&](const double* __restrict const point_1, const double* __restrict const point_2,
+          const double* __restrict const point_area, typename G::History* __restrict const point_history,
+          typename G::SpringState* __restrict const point_spring, double* __restrict const point_slip,
+          double* __restrict const point_viscous) __attribute__((always_inline)) {
+        for (std::uint32_t k = begin; k < end; ++k) {
+          const double x1 = point_1[k], x2 = point_2[k];
+          const double du_n = du0_n + x2 * w_1 - x1 * w_2;
+          const contact::Shear du_s{du0_1 - x2 * w_n, du0_2 + x1 * w_n};
+          const contact::Response r = L::update(p, point_history[k], du_n, du_s);
+          const bool active = L::damping_active(p, point_history[k]);
+          const double area = point_area[k];
+          double dissipated = 0.0;
+          // Spring elongations in the sense of the stresses: closing the gap compresses, shear stress opposes du_s.
+          [[maybe_unused]] const std::array<double, 3> e{-du_n, -du_s[0], -du_s[1]};
+          std::array<double, 3> v{0.0, 0.0, 0.0};  // viscous stresses, Pa
+          if constexpr (G::has_field) {
+            inactive = inactive || !active;
+          } else if constexpr (requires { damping.spring_stresses(point_spring[k], kn, ks, e, increment_dt, active, dissipated); }) {
+            v = damping.spring_stresses(point_spring[k], kn, ks, e, increment_dt, active, dissipated);
+          } else {
+            auto& spring = point_spring[k];
+            v[0] = damping.spring_stress(spring[0], kn, e[0], increment_dt, active, dissipated);
+            v[1] = damping.spring_stress(spring[1], ks, e[1], increment_dt, active, dissipated);
+            v[2] = damping.spring_stress(spring[2], ks, e[2], increment_dt, active, dissipated);
+          }
+          // The traction is not stored: ContactGroup::traction_at() gets it back from the history and the state.
+          // Policies without viscous stresses at the CP do not add v's zeros (x + 0.0 is not x for x = -0.0, so the
+          // compiler keeps the additions).
+          double sn = r.normal_stress, s1 = r.shear_stress[0], s2 = r.shear_stress[1];
+          if constexpr (cp_viscous) {
+            sn += v[0];
+            s1 += v[1];
+            s2 += v[2];
+          }
+          add_cp_force(x1, x2, area * sn, area * s1, area * s2, fn, f1, f2, mn, m1, m2);
+          // Only what can be non-zero is stored: a law or a policy that never dissipates costs no memory traffic here.
+          if constexpr (!std::is_same_v<L, contact::Elastic>) point_slip[k] += area * r.dissipated;
+          if constexpr (cp_viscous) point_viscous[k] += area * dissipated;
         }
-        // The traction is not stored: ContactGroup::traction_at() gets it back from the history and the state.
-        // Policies without viscous stresses at the CP do not add v's zeros (x + 0.0 is not x for x = -0.0, so the
-        // compiler keeps the additions).
-        double sn = r.normal_stress, s1 = r.shear_stress[0], s2 = r.shear_stress[1];
-        if constexpr (cp_viscous) {
-          sn += v[0];
-          s1 += v[1];
-          s2 += v[2];
-        }
-        add_cp_force(x1, x2, area * sn, area * s1, area * s2, fn, f1, f2, mn, m1, m2);
-        // Only what can be non-zero is stored: a law or a policy that never dissipates costs no memory traffic here.
-        if constexpr (!std::is_same_v<L, contact::Elastic>) slip_dissipation[k] += area * r.dissipated;
-        if constexpr (cp_viscous) viscous_dissipation[k] += area * dissipated;
-      }
+      }(plane_1, plane_2, area_of, history, spring_state, slip_dissipation, viscous_dissipation);
       if constexpr (G::has_field) {
         if (in_field) {
           const typename G::FieldSum du0{du0_n, du0_1, du0_2, w_n, w_1, w_2};
