@@ -1,6 +1,8 @@
 // The contact pass stores no traction per CP: output takes it back from the joint law's history
 // (ContactLaw::traction) and the damping policy's spring state (DampingPolicy::held_stress). Reference: what
-// update() and spring_stress() returned on the step, over random paths through every regime.
+// update() and spring_stress() returned on the step, over random paths through every regime. Also the other way
+// round: the damping switch update() returns (Response::damping_active, which the contact pass uses) is the one
+// the history holds (ContactLaw::damping_active, which output, release and redetection use).
 
 #include <doctest/doctest.h>
 
@@ -25,9 +27,11 @@ constexpr double degree = pi / 180.0;
 
 /// Runs `paths` random displacement paths of 250 steps through each parameter set; returns how many steps the
 /// history's traction differed from what update() returned (normal: by more than 1e-12 relative, rounding of the
-/// secant; shear: at all), and counts the steps that slipped, cracked or crushed in `inelastic`.
+/// secant; shear: at all) or its damping switch did, and counts the steps that slipped, cracked or crushed in
+/// `inelastic` and those after which the damping was off in `inactive`.
 template <class Law>
-long long traction_mismatches(const std::vector<typename Law::Parameters>& sets, int paths, long long& inelastic) {
+long long traction_mismatches(const std::vector<typename Law::Parameters>& sets, int paths, long long& inelastic,
+                              long long& inactive) {
   SplitMix64 random(20261121);
   long long mismatches = 0;
   for (int path = 0; path < paths; ++path) {
@@ -44,15 +48,18 @@ long long traction_mismatches(const std::vector<typename Law::Parameters>& sets,
       const contact::Response r = Law::update(p, h, dn, ds);
       const contact::Traction t = Law::traction(p, h);
       const bool same = std::abs(t[0] - r.normal_stress) <= 1e-12 * std::abs(r.normal_stress) &&
-                        t[1] == r.shear_stress[0] && t[2] == r.shear_stress[1];
+                        t[1] == r.shear_stress[0] && t[2] == r.shear_stress[1] &&
+                        r.damping_active == Law::damping_active(p, h);
       if (!same && ++mismatches < 4) {
         CAPTURE(path);
         CAPTURE(i);
         CAPTURE(r.normal_stress);
         CAPTURE(t[0]);
+        CAPTURE(r.damping_active);
         CHECK(same);
       }
       inelastic += r.dissipated > 0;
+      inactive += !r.damping_active;
     }
   }
   return mismatches;
@@ -88,16 +95,19 @@ long long held_mismatches(const Damping& policy, double dt, long long& nonzero) 
 
 }  // namespace
 
-TEST_CASE("every joint law: the traction its history holds is what its last update returned (random paths)") {
-  long long inelastic = 0;
-  CHECK(traction_mismatches<contact::Elastic>({{1e10, 4e9}, {3.9e10, 1.6e10}}, 400, inelastic) == 0);
+TEST_CASE("every joint law: the traction and damping switch its history holds are what its last update returned (random paths)") {
+  long long inelastic = 0, inactive = 0;
+  CHECK(traction_mismatches<contact::Elastic>({{1e10, 4e9}, {3.9e10, 1.6e10}}, 400, inelastic, inactive) == 0);
+  CHECK(inactive == 0);
   const std::vector<contact::MohrCoulomb::Parameters> mohr_coulomb{
       {1e10, 4e9, 0, 0, 0.6},                                   // dry joint
       {1e10, 4e9, 0.3e6, 0.3e6, 38 * degree, 0.05e6, 0.1e6, 30 * degree},  // bonded, residual strengths
       {3.9e10, 1.6e10, 0.1e6, 0.0, 0.0}};                       // no friction
-  inelastic = 0;
-  CHECK(traction_mismatches<contact::MohrCoulomb>(mohr_coulomb, 1200, inelastic) == 0);
+  inelastic = inactive = 0;
+  CHECK(traction_mismatches<contact::MohrCoulomb>(mohr_coulomb, 1200, inelastic, inactive) == 0);
   CHECK(inelastic > 1200 * 250 / 20);  // the paths slip and open, not only the elastic range
+  CHECK(inactive > 1200 * 250 / 20);   // both values of the switch are checked
+  CHECK(inactive < 1200 * 250);
   using contact::ElastoSoftening;
   const auto table1 = ElastoSoftening::Parameters::from_material();
   const contact::JointStiffness k{table1.normal_stiffness, table1.shear_stiffness};
@@ -106,9 +116,11 @@ TEST_CASE("every joint law: the traction its history holds is what its last upda
   const std::vector<ElastoSoftening::Parameters> softening{
       table1, ElastoSoftening::Parameters(k, {0.3e6, 0.3e6, 38 * degree, 9.1e6, 0.05e6, 0.1e6, 30 * degree}, g),
       ElastoSoftening::Parameters(k, {0.1e6, 0.2e6, 0.0, 2e6, 0, 0, 0.0}, {5.0, 20.0, 500.0})};
-  inelastic = 0;
-  CHECK(traction_mismatches<ElastoSoftening>(softening, 1200, inelastic) == 0);
+  inelastic = inactive = 0;
+  CHECK(traction_mismatches<ElastoSoftening>(softening, 1200, inelastic, inactive) == 0);
   CHECK(inelastic > 1200 * 250 / 20);  // cracked, crushed and slipped
+  CHECK(inactive > 1200 * 250 / 20);
+  CHECK(inactive < 1200 * 250);
 }
 
 TEST_CASE("every damping policy with spring states: the viscous stress the state holds is what spring_stress returned") {

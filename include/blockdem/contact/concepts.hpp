@@ -20,12 +20,15 @@ struct Response {
   double normal_stress = 0;       // Pa, compression positive
   Shear shear_stress{0, 0};       // Pa
   double dissipated = 0;          // J/m^2 dissipated by slip (and softening) during this step
+  bool damping_active = true;     // damping_active(params, history) after the step, from the step's own values
 };
 
 /// A joint law: `Parameters` (validated on construction: throws InvalidArgument naming the field and range),
 /// `History` (per contact point; `gap` in m, positive open), and static functions
 /// - `update(params, history, du_normal, du_shear) -> Response`: du_normal is the increment of the gap (m),
-///   du_shear the increment of B's displacement relative to A along t1, t2 (m); updates the history;
+///   du_shear the increment of B's displacement relative to A along t1, t2 (m); updates the history. Its
+///   `damping_active` is damping_active(params, history) after the step: the contact pass reads it there, where the
+///   step has the flags and the gap in registers, instead of loading them back from the history per CP;
 /// - `normal_stiffness(params)`, `shear_stiffness(params)`: the elastic stiffnesses, Pa/m, for the timestep;
 /// - `damping_active(params, history)`: false once the joint has failed or while it is open, so that a dashpot
 ///   never acts across an open joint (the damping policy releases its stresses);

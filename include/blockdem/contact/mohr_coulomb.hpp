@@ -93,7 +93,7 @@ struct MohrCoulomb {
     // a lone byte store just before would stall (store forwarding).
     h.failed = failed ? 1 : 0;
     h.slipping = slipping ? 1 : 0;
-    return {sigma, tau, dissipated};
+    return {sigma, tau, dissipated, !failed && !slipping && (h.gap <= 0 || p.tensile_strength > 0)};  // damping_active
   }
   static constexpr double normal_stiffness(const Parameters& p) noexcept { return p.normal_stiffness; }
   static constexpr double shear_stiffness(const Parameters& p) noexcept { return p.shear_stiffness; }

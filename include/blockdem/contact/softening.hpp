@@ -280,7 +280,8 @@ struct ElastoSoftening {
     h.gap = gap;
     h.shear = tau;
     h.inelastic = 0;
-    return {sigma, tau, 0.0};
+    // damping_active with inelastic = 0 and the new gap.
+    return {sigma, tau, 0.0, h.damage == 0 || (h.damage < p.damping_damage_limit && h.failed == 0 && !(gap > 0))};
   }
 
   /// The whole step, any regime (the elastic one included).
@@ -360,7 +361,7 @@ struct ElastoSoftening {
     if (intact < intact0) h.damage = std::max(h.damage, std::min(1.0, 1.0 - intact));
     h.failed = h.damage >= failure_damage;
     h.inelastic = inelastic;
-    return {sigma, tau, dissipated};
+    return {sigma, tau, dissipated, damping_active(p, h)};
   }
 
   static constexpr double normal_stiffness(const Parameters& p) noexcept { return p.normal_stiffness; }

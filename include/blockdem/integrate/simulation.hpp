@@ -874,7 +874,7 @@ class Simulation {
           const double du_n = du0_n + x2 * w_1 - x1 * w_2;
           const contact::Shear du_s{du0_1 - x2 * w_n, du0_2 + x1 * w_n};
           const contact::Response r = L::update(p, point_history[k], du_n, du_s);
-          const bool active = L::damping_active(p, point_history[k]);
+          const bool active = r.damping_active;  // L::damping_active(p, point_history[k]), from the step's registers
           const double area = point_area[k];
           double dissipated = 0.0;
           // Spring elongations in the sense of the stresses: closing the gap compresses, shear stress opposes du_s.

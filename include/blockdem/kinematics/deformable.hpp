@@ -888,7 +888,7 @@ class DeformableState {
       const auto& p = g.properties[g.property[k]];
       const double kn = L::normal_stiffness(p), ks = L::shear_stiffness(p);
       const contact::Response r = L::update(p, g.history[k], du_n, du_s);
-      const bool active = L::damping_active(p, g.history[k]);
+      const bool active = r.damping_active;  // L::damping_active(p, g.history[k])
       double dissipated = 0.0;
       auto& spring = g.spring_state[k];
       const double sn = r.normal_stress + damping.spring_stress(spring[0], kn, -du_n, increment_dt, active, dissipated);
