@@ -20,7 +20,9 @@ struct Response {
   double normal_stress = 0;       // Pa, compression positive
   Shear shear_stress{0, 0};       // Pa
   double dissipated = 0;          // J/m^2 dissipated by slip (and softening) during this step
-  bool damping_active = true;     // damping_active(params, history) after the step, from the step's own values
+  // damping_active(params, history) after the step, from the step's own values. No default: a law that leaves it
+  // out of its return is named by -Wextra (missing-field-initializers) instead of keeping dashpots on silently.
+  bool damping_active;
 };
 
 /// A joint law: `Parameters` (validated on construction: throws InvalidArgument naming the field and range),

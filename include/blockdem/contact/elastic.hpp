@@ -33,7 +33,7 @@ struct Elastic {
     const Shear tau{h.shear[0] - p.shear_stiffness * du_shear[0], h.shear[1] - p.shear_stiffness * du_shear[1]};
     h.gap = gap;
     h.shear = tau;
-    return {-p.normal_stiffness * gap, tau, 0.0};
+    return {-p.normal_stiffness * gap, tau, 0.0, true};  // never fails nor opens: damping always active
   }
   static constexpr double normal_stiffness(const Parameters& p) noexcept { return p.normal_stiffness; }
   static constexpr double shear_stiffness(const Parameters& p) noexcept { return p.shear_stiffness; }

@@ -788,8 +788,9 @@ class Simulation {
   void contact_pass_of(G& g, double increment_dt) {
     using L = typename G::LawType;
     auto& b = model_->bodies;
-    // Raw restrict pointers: the stores of one CP cannot alias the arrays read for the next, so the compiler keeps
-    // the array addresses in registers instead of reloading them after every store.
+    // Raw pointers in locals: the compiler keeps the array addresses in registers instead of reloading them from the
+    // vectors after every store. (GCC honours restrict only on parameters: the CP loop below gets its arrays as the
+    // parameters of a lambda; here restrict documents the intent.)
     const Mat3* __restrict const rotation = b.rotation.data();
     const Vec3* __restrict const position = b.position.data();
     const Vec3* __restrict const velocity = b.velocity.data();
