@@ -10,6 +10,7 @@
 #include <cmath>
 #include <complex>
 
+#include "blockdem/core/lanes.hpp"
 #include "blockdem/core/units.hpp"
 #include "blockdem/damping/maxwell.hpp"
 
@@ -166,6 +167,78 @@ TEST_CASE("maxwell: the contact field gives the resultant and the work of every 
   CHECK(round_trip < 1e-14 * largest);
   CHECK(damping::Maxwell<3>::field_work(field_work) == test::approx(own_work).epsilon(1e-12));
   CHECK(own_work > 0);
+}
+
+TEST_CASE("maxwell: the fields of four contacts in lanes (FieldLanes) advance as each contact's own field") {
+  // Reference: advance_field per contact (validated above against every CP's own branch states). Four contacts of
+  // different stiffnesses and motions, one per lane; in some steps lane 2 is not kept (a contact whose CPs hold
+  // their own branch states): it must keep its values and give no force. Lane 3 is never kept (no contact).
+  using M = damping::Maxwell<3>;
+  M m({MaxwellBranch::from_peak(0.02, 2 * pi * 1.0), MaxwellBranch::from_peak(0.02, 2 * pi * 6.0),
+       MaxwellBranch::from_peak(0.02, 2 * pi * 40.0)});
+  m.prepare(1e-4);
+  std::array<M::ContactField, 4> own{};
+  std::array<M::FieldWork, 4> own_work{};
+  std::array<M::FieldStiffness, 4> stiffness{};
+  M::FieldLanes lanes{};
+  for (std::size_t c = 0; c < 4; ++c) {
+    stiffness[c] = M::contact_stiffness(0.02 * (1.0 + static_cast<double>(c)), 1e-4 * (2.0 + static_cast<double>(c)), 3e-4, 1e10, 4e9);
+    for (std::size_t j = 0; j < 6; ++j) lanes.stiffness[j].set(c, stiffness[c][j]);
+  }
+  double largest = 0, deviation = 0, work_deviation = 0, unchanged = 0, force_of_unkept = 0;
+  for (int step = 0; step < 200; ++step) {
+    const double t = step;
+    const bool lane_2_kept = step % 7 != 3;
+    const LaneMask keep{-1, -1, lane_2_kept ? -1 : 0, 0};
+    Lanes du[6];
+    std::array<M::Generalised, 4> each{};
+    for (std::size_t c = 0; c < 4; ++c)
+      for (std::size_t j = 0; j < 6; ++j) {
+        each[c][j] = 1e-7 * std::sin(0.05 * (1.0 + static_cast<double>(j)) * t + static_cast<double>(c));
+        du[j].set(c, each[c][j]);
+      }
+    const M::FieldLanes before = lanes;
+    Lanes sum[6];
+    m.advance_field<false>(lanes, du, keep, sum);
+    for (std::size_t c = 0; c < 3; ++c) {
+      if (c == 2 && !lane_2_kept) continue;
+      const auto want = m.advance_field(own[c], own_work[c], each[c], stiffness[c]);
+      for (std::size_t j = 0; j < 6; ++j) {
+        largest = std::max(largest, std::abs(want[j]));
+        deviation = std::max(deviation, std::abs(sum[j][c] - want[j]));
+        for (std::size_t i = 0; i < 3; ++i) deviation = std::max(deviation, std::abs(lanes.forces[i][j][c] - own[c][i][j]));
+      }
+      work_deviation = std::max(work_deviation, std::abs(0.5 * lanes.work[c] - M::field_work(own_work[c])) /
+                                                    std::max(std::abs(M::field_work(own_work[c])), 1e-300));
+    }
+    for (std::size_t c = 2; c < 4; ++c) {
+      if (c == 2 && lane_2_kept) continue;
+      for (std::size_t j = 0; j < 6; ++j) {
+        force_of_unkept = std::max(force_of_unkept, std::abs(sum[j][c]));
+        for (std::size_t i = 0; i < 3; ++i) unchanged = std::max(unchanged, std::abs(lanes.forces[i][j][c] - before.forces[i][j][c]));
+      }
+      unchanged = std::max(unchanged, std::abs(lanes.work[c] - before.work[c]));
+    }
+  }
+  // All four kept, through advance_field<true>, from the same state as <false>: the same numbers.
+  {
+    M::FieldLanes a = lanes, b = lanes;
+    Lanes du[6], sum_a[6], sum_b[6];
+    for (std::size_t j = 0; j < 6; ++j) du[j] = Lanes::of(1e-7, -2e-7, 3e-7, 4e-8) * (1.0 + static_cast<double>(j));
+    const LaneMask all{-1, -1, -1, -1};
+    m.advance_field<true>(a, du, all, sum_a);
+    m.advance_field<false>(b, du, all, sum_b);
+    for (std::size_t j = 0; j < 6; ++j)
+      for (std::size_t c = 0; c < 4; ++c) {
+        CHECK(sum_a[j][c] == sum_b[j][c]);
+        CHECK(a.forces[0][j][c] == b.forces[0][j][c]);
+      }
+  }
+  CHECK(largest > 1.0);
+  CHECK(deviation <= 1e-13 * largest);
+  CHECK(work_deviation < 1e-12);
+  CHECK(unchanged == 0.0);
+  CHECK(force_of_unkept == 0.0);
 }
 
 TEST_CASE("maxwell: element_stress_tile (elements across lanes) equals element_stress per element") {

@@ -19,6 +19,7 @@
 
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/core/error.hpp"
+#include "blockdem/core/lanes.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
 
@@ -73,15 +74,6 @@ struct AreaMoments {
 };
 
 namespace detail {
-/// What a contact of a policy with a contact-field form (damping::Maxwell::ContactField) keeps of its field, in one
-/// record: the contact pass reads and writes it through one pointer, and its vectors of four lanes never straddle a
-/// cache line (the three parts are whole multiples of 32 bytes).
-template <class Damping>
-struct alignas(32) FieldRecord {
-  typename Damping::ContactField forces{};       // the branch forces F_i, the last slot their sum (N, N m)
-  typename Damping::FieldStiffness stiffness{};  // diag G, from the area moments of the CPs (complete())
-  typename Damping::FieldWork work{};            // the branches' viscous work while in the field form (field_work)
-};
 /// The per-contact branch state of policies with a contact-field form, else none.
 template <class Damping>
 struct ContactFieldOf {
@@ -95,7 +87,7 @@ template <class Damping>
 struct ContactFieldOf<Damping> {
   using type = typename Damping::ContactField;
   using sum = typename Damping::Generalised;
-  using record = FieldRecord<Damping>;
+  using record = typename Damping::FieldLanes;
   static constexpr bool present = true;
 };
 }  // namespace detail
@@ -117,11 +109,12 @@ struct ContactGroup {
   std::vector<std::uint32_t> first_point;  // the CPs of contact c are first_point[c] .. first_point[c + 1] - 1
   std::vector<Vec3> force;               // N, world frame, on B (A gets the opposite)
   std::vector<Vec3> moment;              // N m, world frame: [2c] on A about A's centroid, [2c + 1] on B about B's
-  // Policies with a contact-field form (Maxwell): while field_form[c] is 1, the branch state of contact c is
-  // field[c].forces and its CPs' spring_state is unused; once a CP has released its branches, the CPs'
-  // spring_state. field[c].stiffness is the diagonal of the contact's stiffness G on its generalised elongation
-  // (complete(); diagonal because the frame is the CPs' principal one); field[c].work the branches' viscous work
-  // while in the field form (Damping::field_work), kept also after.
+  // Policies with a contact-field form (Maxwell): while field_form[c] is 1, the branch state of contact c is its
+  // field's forces (field_forces) and its CPs' spring_state is unused; once a CP has released its branches, the
+  // CPs' spring_state. The field's stiffness is the diagonal of the contact's stiffness G on its generalised
+  // elongation (complete(); diagonal because the frame is the CPs' principal one); its work the branches' viscous
+  // work while in the field form, kept also after. Four contacts to a record, one per lane (contact c in
+  // field[c / 4], lane c % 4), as the contact pass advances them.
   static constexpr bool has_field = detail::ContactFieldOf<Damping>::present;
   using Field = typename detail::ContactFieldOf<Damping>::type;
   using FieldSum = typename detail::ContactFieldOf<Damping>::sum;  // sum over the branches of a field
@@ -153,7 +146,10 @@ struct ContactGroup {
   void begin_contact(std::uint32_t a, std::uint32_t b, std::uint16_t p, const Vec3& origin, const Vec3& normal,
                      const Vec3& tangent, bool in_field_form = false, const Field& f = Field{}, double viscous = 0.0) {
     if constexpr (has_field) {
-      field.push_back({f, {}, Damping::field_work_of(viscous)});
+      const std::size_t c = contacts();
+      if (c % lane_count == 0) field.push_back(FieldRecord{});
+      set_field_forces(c, f);
+      field_lanes(c).work.set(c % lane_count, 2.0 * viscous);
       field_form.push_back(in_field_form ? 1 : 0);
     }
     body_a.push_back(a);
@@ -175,11 +171,38 @@ struct ContactGroup {
   /// and B h_i, the elongation at each CP, is that of the h_i given (a CP on the line does not move in a turn about
   /// it).
   auto field_elongations(std::size_t c) const {
-    auto h = Damping::branch_forces(field[c].forces);
-    const auto& g = field[c].stiffness;
+    auto h = Damping::branch_forces(field_forces(c));
+    const auto g = field_stiffness(c);
     for (auto& branch : h)
       for (std::size_t j = 0; j < 6; ++j) branch[j] = g[j] > 0.0 ? branch[j] / g[j] : 0.0;
     return h;
+  }
+
+  /// The record and the lane of contact c's field.
+  const FieldRecord& field_lanes(std::size_t c) const { return field[c / lane_count]; }
+  FieldRecord& field_lanes(std::size_t c) { return field[c / lane_count]; }
+  /// Contact c's field: its branch forces (the last slot their sum, Damping::ContactField).
+  Field field_forces(std::size_t c) const {
+    Field f{};
+    for (std::size_t i = 0; i < f.size(); ++i)
+      for (std::size_t j = 0; j < 6; ++j) f[i][j] = field_lanes(c).forces[i][j][c % lane_count];
+    return f;
+  }
+  void set_field_forces(std::size_t c, const Field& f) {
+    for (std::size_t i = 0; i < f.size(); ++i)
+      for (std::size_t j = 0; j < 6; ++j) field_lanes(c).forces[i][j].set(c % lane_count, f[i][j]);
+  }
+  /// The diagonal of contact c's stiffness G (Damping::FieldStiffness).
+  auto field_stiffness(std::size_t c) const {
+    typename Damping::FieldStiffness g{};
+    for (std::size_t j = 0; j < 6; ++j) g[j] = field_lanes(c).stiffness[j][c % lane_count];
+    return g;
+  }
+  /// The viscous work of contact c's field (J), and adding to it.
+  double field_work(std::size_t c) const { return 0.5 * field_lanes(c).work[c % lane_count]; }
+  void add_field_work(std::size_t c, double work) {
+    auto& w = field_lanes(c).work;
+    w.set(c % lane_count, w[c % lane_count] + 2.0 * work);
   }
 
   /// The branch state of CP k of contact c, whichever form holds it.
@@ -240,12 +263,13 @@ struct ContactGroup {
                                 "centroid of the CPs and t1 along a principal axis of their areas; " + numbers);
         }
         const auto& p = properties[property[c]];
-        auto& record = field[c];
-        record.stiffness = Damping::contact_stiffness(a0, a11, a22, Law::normal_stiffness(p), Law::shear_stiffness(p));
+        const auto g = Damping::contact_stiffness(a0, a11, a22, Law::normal_stiffness(p), Law::shear_stiffness(p));
+        for (std::size_t j = 0; j < 6; ++j) field_lanes(c).stiffness[j].set(c % lane_count, g[j]);
+        const Field h = field_forces(c);
         std::array<typename Damping::Generalised, std::tuple_size_v<Field>> forces{};  // F = G h (begin_contact: h)
         for (std::size_t b = 0; b < forces.size(); ++b)
-          for (std::size_t j = 0; j < 6; ++j) forces[b][j] = record.stiffness[j] * record.forces[b][j];
-        record.forces = Damping::field_of(forces);
+          for (std::size_t j = 0; j < 6; ++j) forces[b][j] = g[j] * h[b][j];
+        set_field_forces(c, Damping::field_of(forces));
       }
     }
     first.assign(blocks + 1, 0);
