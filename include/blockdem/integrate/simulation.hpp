@@ -765,6 +765,37 @@ class Simulation {
     m2 += r[5];
   }
 
+  /// A contact with a field whose CPs keep their own branch states (field_form 0, after a CP released its
+  /// branches; contact_pass_of): their viscous stresses, after the law has updated every CP's history, added to
+  /// the lane's resultants.
+  template <class G>
+  void add_own_branch_forces(G& g, std::size_t c, const Lanes (&motion)[6], std::size_t lane, double increment_dt,
+                             Lanes (&resultant)[6]) {
+    using L = typename G::LawType;
+    const auto& p = g.properties[g.property[c]];
+    const double kn = L::normal_stiffness(p);
+    const double ks = L::shear_stiffness(p);
+    const double du0_n = motion[0][lane], du0_1 = motion[1][lane], du0_2 = motion[2][lane];
+    const double w_n = motion[3][lane], w_1 = motion[4][lane], w_2 = motion[5][lane];
+    double fn = 0, f1 = 0, f2 = 0, mn = 0, m1 = 0, m2 = 0;
+    for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k) {
+      const double x1 = g.s1[k], x2 = g.s2[k];
+      const std::array<double, 3> e{-(du0_n + x2 * w_1 - x1 * w_2), -(du0_1 - x2 * w_n), -(du0_2 + x1 * w_n)};
+      double dissipated = 0.0;
+      const auto v = damping_.spring_stresses(g.spring_state[k], kn, ks, e, increment_dt, L::damping_active(p, g.history[k]),
+                                              dissipated);
+      const double area = g.area[k];
+      add_cp_force(x1, x2, area * v[0], area * v[1], area * v[2], fn, f1, f2, mn, m1, m2);
+      g.viscous_dissipation[k] += area * dissipated;
+    }
+    resultant[0].set(lane, resultant[0][lane] + fn);
+    resultant[1].set(lane, resultant[1][lane] + f1);
+    resultant[2].set(lane, resultant[2][lane] + f2);
+    resultant[3].set(lane, resultant[3][lane] + mn);
+    resultant[4].set(lane, resultant[4][lane] + m1);
+    resultant[5].set(lane, resultant[5][lane] + m2);
+  }
+
   /// A contact in the field form some of whose CPs failed or opened in this step (contact_pass_of): those CPs
   /// release their branches. A released CP's new stress is 0, and its work over the step is that of its old stress
   /// only. (With no time passing, its branches only stop acting: nothing is released.) From the next step on every
@@ -935,12 +966,11 @@ class Simulation {
         // field keeps each branch's generalised force on the contact, F_i = G h_i, advanced once per step under the
         // contact's generalised elongation increment q = (-du0, -w) through G q (G the contact's stiffness, diagonal
         // in the frame of the CPs' areas); the field's force on the contact is sum_i F_i, added to the resultants
-        // after the CP loop, and its tractions at the CPs are evaluated only when asked for
-        // (ContactGroup::traction_at). The CP loop runs the law only and has no branch on the form. The field is
-        // advanced after it, where its results are used at once: advanced before, they stayed live across the CP
-        // loop and made Maxwell<3> 3 % (Elastic) to 5 % (ElastoSoftening) slower. A contact whose CPs keep their own
-        // branch states (field_form 0, after a CP released its branches) adds them in a second CP loop below.
-        [[maybe_unused]] const bool in_field = G::has_field && field_form[c] != 0;
+        // after the CP loops of the four contacts, in lanes, and its tractions at the CPs are evaluated only when
+        // asked for (ContactGroup::traction_at). The CP loop runs the law only, has no branch on the form and only
+        // notes whether a CP failed or opened. A contact whose CPs keep their own branch states (field_form 0,
+        // after a CP released its branches) adds them after the CP loops too (add_own_branch_forces), so that this
+        // loop is the same for both forms.
         [[maybe_unused]] bool inactive = false;
         // The CP loop through restrict parameters: GCC honours restrict on parameters, not on the local pointers above,
         // and without it guards the loop with a run-time check that the histories do not overlap the CPs' coordinates.
@@ -984,22 +1014,7 @@ class Simulation {
             if constexpr (cp_viscous) point_viscous[k] += area * dissipated;
           }
         }(plane_1, plane_2, area_of, history, spring_state, slip_dissipation, viscous_dissipation);
-        if constexpr (G::has_field) {
-          if (!in_field) {
-            // The CPs' own branch states, after the law has updated every CP's history.
-            for (std::uint32_t k = begin; k < end; ++k) {
-              const double x1 = plane_1[k], x2 = plane_2[k];
-              const std::array<double, 3> e{-(du0_n + x2 * w_1 - x1 * w_2), -(du0_1 - x2 * w_n), -(du0_2 + x1 * w_n)};
-              double dissipated = 0.0;
-              const auto v = damping.spring_stresses(spring_state[k], kn, ks, e, increment_dt,
-                                                     L::damping_active(p, history[k]), dissipated);
-              const double area = area_of[k];
-              add_cp_force(x1, x2, area * v[0], area * v[1], area * v[2], fn, f1, f2, mn, m1, m2);
-              viscous_dissipation[k] += area * dissipated;
-            }
-          }
-          released[lane] = in_field && inactive;
-        }
+        if constexpr (G::has_field) released[lane] = inactive;
         resultant[0].set(lane, fn);
         resultant[1].set(lane, f1);
         resultant[2].set(lane, f2);
@@ -1023,9 +1038,14 @@ class Simulation {
           Damping::field_force(field[lg], keep, sum);
         }
         for (std::size_t j = 0; j < 6; ++j) resultant[j] += sum[j];
-        for (std::size_t lane = 0; lane < used; ++lane)
-          if (released[lane]) [[unlikely]]
-            release_field<AdvanceFields>(g, first + lane, motion, lane, resultant);
+        if (!all_kept || (released[0] | released[1] | released[2] | released[3])) [[unlikely]] {
+          for (std::size_t lane = 0; lane < used; ++lane) {
+            if (!keep[lane])
+              add_own_branch_forces(g, first + lane, motion, lane, increment_dt, resultant);
+            else if (released[lane])
+              release_field<AdvanceFields>(g, first + lane, motion, lane, resultant);
+          }
+        }
       }
       const T4 f = combine(n, t1, t2, resultant[0], resultant[1], resultant[2]);
       const T4 m_origin = combine(n, t1, t2, resultant[3], resultant[4], resultant[5]);
