@@ -765,6 +765,12 @@ class Simulation {
     m2 += r[5];
   }
 
+  /// Adds resultants in the contact frame (force along n, t1, t2, moment about the origin along n, t1, t2) to lane
+  /// `lane` of the contact pass's resultants.
+  [[gnu::always_inline]] static void add_to_lane(Lanes (&resultant)[6], std::size_t lane, const std::array<double, 6>& r) {
+    for (std::size_t j = 0; j < 6; ++j) resultant[j].set(lane, resultant[j][lane] + r[j]);
+  }
+
   /// A contact with a field whose CPs keep their own branch states (field_form 0, after a CP released its
   /// branches; contact_pass_of): their viscous stresses, after the law has updated every CP's history, added to
   /// the lane's resultants.
@@ -788,12 +794,7 @@ class Simulation {
       add_cp_force(x1, x2, area * v[0], area * v[1], area * v[2], fn, f1, f2, mn, m1, m2);
       g.viscous_dissipation[k] += area * dissipated;
     }
-    resultant[0].set(lane, resultant[0][lane] + fn);
-    resultant[1].set(lane, resultant[1][lane] + f1);
-    resultant[2].set(lane, resultant[2][lane] + f2);
-    resultant[3].set(lane, resultant[3][lane] + mn);
-    resultant[4].set(lane, resultant[4][lane] + m1);
-    resultant[5].set(lane, resultant[5][lane] + m2);
+    add_to_lane(resultant, lane, {fn, f1, f2, mn, m1, m2});
   }
 
   /// A contact in the field form some of whose CPs failed or opened in this step (contact_pass_of): those CPs
@@ -832,12 +833,7 @@ class Simulation {
       g.field_form[c] = 0;
     }
     g.add_field_work(c, field_work);
-    resultant[0].set(lane, resultant[0][lane] + fn);
-    resultant[1].set(lane, resultant[1][lane] + f1);
-    resultant[2].set(lane, resultant[2][lane] + f2);
-    resultant[3].set(lane, resultant[3][lane] + mn);
-    resultant[4].set(lane, resultant[4][lane] + m1);
-    resultant[5].set(lane, resultant[5][lane] + m2);
+    add_to_lane(resultant, lane, {fn, f1, f2, mn, m1, m2});
   }
 
   /// The fused contact loop of one law (contact_pass_of). Groups with Maxwell fields get the loop compiled twice,
