@@ -51,14 +51,4 @@ struct Lanes {
 /// Lane by lane: a where `mask` is set, else b.
 [[gnu::always_inline]] inline Lanes select(const LaneMask& mask, const Lanes& a, const Lanes& b) { return {mask ? a.v : b.v}; }
 
-/// The 4 x 4 transpose of the rows r0..r3: afterwards r_i holds lane i of the old rows (lane j from r_j).
-[[gnu::always_inline]] inline void transpose(Lanes& r0, Lanes& r1, Lanes& r2, Lanes& r3) {
-  const Lanes::Vector t0 = __builtin_shufflevector(r0.v, r1.v, 0, 4, 2, 6), t1 = __builtin_shufflevector(r0.v, r1.v, 1, 5, 3, 7);
-  const Lanes::Vector t2 = __builtin_shufflevector(r2.v, r3.v, 0, 4, 2, 6), t3 = __builtin_shufflevector(r2.v, r3.v, 1, 5, 3, 7);
-  r0.v = __builtin_shufflevector(t0, t2, 0, 1, 4, 5);
-  r1.v = __builtin_shufflevector(t1, t3, 0, 1, 4, 5);
-  r2.v = __builtin_shufflevector(t0, t2, 2, 3, 6, 7);
-  r3.v = __builtin_shufflevector(t1, t3, 2, 3, 6, 7);
-}
-
 }  // namespace blockdem

@@ -5,7 +5,6 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
-#include <cstring>
 #include <span>
 
 #include "blockdem/core/constexpr_math.hpp"
@@ -201,28 +200,28 @@ struct Maxwell {
     dissipated += work;
   }
 
-  // The same update for `Lanes` consecutive tetrahedra at once, one per SIMD lane. One tetrahedron's 6 N branch
+  // The same update for Width consecutive tetrahedra at once, one per SIMD lane. One tetrahedron's 6 N branch
   // stresses are few and each update is a short dependent chain, so that per element the update stays scalar;
   // across elements every operation is the same, and with the state stored [component][branch][lane] each one is a
   // contiguous vector over the tile. Per lane the operations and their order are those of element_stress.
-  template <std::size_t Lanes>
-  using ElementLanes = std::array<std::array<double, Lanes>, 6>;  // one value per component (xx yy zz xy yz zx) and lane
-  template <std::size_t Lanes>
+  template <std::size_t Width>
+  using ElementLanes = std::array<std::array<double, Width>, 6>;  // one value per component (xx yy zz xy yz zx) and lane
+  template <std::size_t Width>
   struct alignas(64) ElementTile {
-    std::array<std::array<std::array<double, Lanes>, static_cast<std::size_t>(N)>, 6> stress{};  // Pa, [component][branch][lane]
+    std::array<std::array<std::array<double, Width>, static_cast<std::size_t>(N)>, 6> stress{};  // Pa, [component][branch][lane]
   };
 
   /// element_stress for the tile's elements: `branch_stress` receives the sum of the branch stresses (Pa), `work` the
   /// work on the branches (J/m^3; 0 when dt <= 0), per lane. Lanes past the last element hold zero increments (their
   /// branch stresses then stay zero).
-  template <std::size_t Lanes>
-  void element_stress_tile(ElementTile<Lanes>& tile, const ElementLanes<Lanes>& elastic_increment,
-                           const ElementLanes<Lanes>& strain_increment, double dt, ElementLanes<Lanes>& branch_stress,
-                           std::array<double, Lanes>& work) const noexcept {
+  template <std::size_t Width>
+  void element_stress_tile(ElementTile<Width>& tile, const ElementLanes<Width>& elastic_increment,
+                           const ElementLanes<Width>& strain_increment, double dt, ElementLanes<Width>& branch_stress,
+                           std::array<double, Width>& work) const noexcept {
     constexpr std::size_t n = static_cast<std::size_t>(N);
     if (dt <= 0.0) {  // no time passes (see element_stress)
       for (std::size_t c = 0; c < 6; ++c)
-        for (std::size_t l = 0; l < Lanes; ++l) {
+        for (std::size_t l = 0; l < Width; ++l) {
           double sum = 0.0;
           for (std::size_t i = 0; i < n; ++i) sum += tile.stress[c][i][l];
           branch_stress[c][l] = sum;
@@ -230,7 +229,7 @@ struct Maxwell {
       work.fill(0.0);
       return;
     }
-    update_tile<Lanes>(tile.stress[0][0].data(), elastic_increment[0].data(), strain_increment[0].data(), decay_.data(),
+    update_tile<Width>(tile.stress[0][0].data(), elastic_increment[0].data(), strain_increment[0].data(), decay_.data(),
                        gain_.data(), branch_stress[0].data(), work.data());
   }
   /// Energy in the element branches, sum_i (p_i^2 / (2K) + s_i : s_i / (4G)) / alpha_i, J/m^3 (bulk K, shear G in Pa).
@@ -297,68 +296,15 @@ struct Maxwell {
   // its branches (it fails or opens), the contact goes over to the per-CP state (spring_stresses), from the
   // field's values at its CPs.
   using Generalised = std::array<double, 6>;  // e0_n, e0_1, e0_2 (m); r_n, r_1, r_2 (rad); or the forces (N, N m)
-  // F_1 .. F_(N-1), then sum_i F_i (N, N m; force along n, t1, t2, then moment about the origin along n, t1, t2),
-  // each followed by two zeros: two whole vectors of four lanes.
-  using ContactField = std::array<std::array<double, 8>, static_cast<std::size_t>(N)>;
-  /// The diagonal of a contact's stiffness G on its generalised elongation (contact_stiffness), followed by two
-  /// zeros like a branch of the field: N/m for the three elongations, N m for the three rotations.
-  using FieldStiffness = std::array<double, 8>;
+  // F_1 .. F_(N-1), then sum_i F_i (N, N m; force along n, t1, t2, then moment about the origin along n, t1, t2).
+  using ContactField = std::array<Generalised, static_cast<std::size_t>(N)>;
+  /// The diagonal of a contact's stiffness G on its generalised elongation (contact_stiffness): N/m for the three
+  /// elongations, N m for the three rotations.
+  using FieldStiffness = Generalised;
   /// Contacts between rigid blocks start in the field form; false keeps every CP's own branch state from the start
   /// (the reference the field form is tested against).
   bool contact_field = true;
 
-  /// The viscous work of a contact's field (J), kept as twice its value in four partial sums, so that a step adds
-  /// one vector and no horizontal sum (field_work gives the work).
-  using FieldWork = std::array<double, 4>;
-  static constexpr double field_work(const FieldWork& w) noexcept { return 0.5 * ((w[0] + w[1]) + (w[2] + w[3])); }
-  static constexpr FieldWork field_work_of(double work) noexcept { return {2.0 * work, 0.0, 0.0, 0.0}; }
-  /// The generalised force of a field on its contact, sum_i F_i (N, N m): kept in the last slot.
-  static Generalised field_force(const ContactField& f) noexcept {
-    const auto& r = f[static_cast<std::size_t>(N - 1)];
-    return {r[0], r[1], r[2], r[3], r[4], r[5]};
-  }
-  /// Advances the field of a contact of stiffness diag(g) (contact_stiffness) by one step of the timestep prepared
-  /// for (prepare; only when time passes: with none, the field is unchanged and field_force gives its force) under
-  /// the contact's generalised displacement increment du = -q (du0 at the origin, relative rotation w; the contact
-  /// pass's increments as they are, closing and sliding positive), adds the field's work over the step,
-  /// sum over CPs of a (old + new) / 2 . B q = q . sum_i (F_i before + F_i after) / 2, to `work` and returns the
-  /// generalised force at the end of the step, sum_i F_i (N, N m).
-  ///
-  /// In vectors of four lanes, a branch in two. Inlined, so that du and the sums stay in registers: a vector read
-  /// back from scalar stores, or scalars from a vector store, waits for the stores to complete (no store
-  /// forwarding). Taking du instead of q saves negating six numbers per step: G q = -G du, and q . R = -du . R.
-  [[gnu::always_inline]] Generalised advance_field(ContactField& f, FieldWork& work, const Generalised& du,
-                                                   const FieldStiffness& g) const noexcept {
-    const Quad u0 = {du[0], du[1], du[2], du[3]}, u1 = {du[4], du[5], 0.0, 0.0};
-    Quad d0, d1;
-    std::memcpy(&d0, g.data(), sizeof d0);
-    std::memcpy(&d1, g.data() + 4, sizeof d1);
-    const Quad g0 = d0 * u0, g1 = d1 * u1;  // G du = -G q
-    constexpr std::size_t last = static_cast<std::size_t>(N - 1);
-    Quad r0, r1;  // sum_i F_i before the step
-    std::memcpy(&r0, f[last].data(), sizeof r0);
-    std::memcpy(&r1, f[last].data() + 4, sizeof r1);
-    Quad n0 = r0 * decay_[last] - gain_sum_ * g0, n1 = r1 * decay_[last] - gain_sum_ * g1;
-    for (std::size_t i = 0; i < last; ++i) {
-      Quad f0, f1;
-      std::memcpy(&f0, f[i].data(), sizeof f0);
-      std::memcpy(&f1, f[i].data() + 4, sizeof f1);
-      n0 += decay_excess_[i] * f0;
-      n1 += decay_excess_[i] * f1;
-      f0 = f0 * decay_[i] - gain_[i] * g0;
-      f1 = f1 * decay_[i] - gain_[i] * g1;
-      std::memcpy(f[i].data(), &f0, sizeof f0);
-      std::memcpy(f[i].data() + 4, &f1, sizeof f1);
-    }
-    std::memcpy(f[last].data(), &n0, sizeof n0);
-    std::memcpy(f[last].data() + 4, &n1, sizeof n1);
-    Quad w;  // twice the work, q . (R before + R after), in four partial sums
-    std::memcpy(&w, work.data(), sizeof w);
-    w -= (r0 + n0) * u0;
-    w -= (r1 + n1) * u1;
-    std::memcpy(work.data(), &w, sizeof w);
-    return {n0[0], n0[1], n0[2], n0[3], n1[0], n1[1]};
-  }
   /// The fields of four contacts, one per lane, as the contact pass advances them (ContactGroup keeps them so):
   /// forces[i][j] holds component j of F_i (the last slot their sum, as in ContactField), stiffness[j] that of
   /// diag G, work twice the branches' viscous work.
@@ -367,11 +313,17 @@ struct Maxwell {
     Lanes stiffness[6];
     Lanes work;
   };
-  /// advance_field for the four contacts of `f` at once, one per lane, with the same operations per component;
-  /// `du` and `sum` are lanes of the six components. Lanes where `keep` is set are advanced; the others keep
-  /// their values and give a zero force (contacts whose CPs hold their own branch states, and the lanes without a
-  /// contact at the end of a group). Every contact then costs a third of a vector operation per component and
-  /// branch, and no shuffle.
+  /// Advances the fields of four contacts, one per lane, by one step of the timestep prepared for (prepare; only
+  /// when time passes: with none, the fields are unchanged and field_force gives their force) under each
+  /// contact's generalised displacement increment du = -q (du0 at the origin, relative rotation w; the contact
+  /// pass's increments as they are, closing and sliding positive; du[j]: the lanes of component j). Adds each
+  /// field's work over the step, sum over CPs of a (old + new) / 2 . B q = q . sum_i (F_i before + F_i after) / 2,
+  /// twice, to f.work, and gives in `sum` the generalised force at the end of the step, sum_i F_i (N, N m).
+  /// Taking du instead of q saves negating six numbers per step: G q = -G du, and q . R = -du . R.
+  ///
+  /// Lanes where `keep` is set are advanced; the others keep their values and give a zero force (contacts whose
+  /// CPs hold their own branch states, and the lanes without a contact at the end of a group). AllKept: every
+  /// lane is kept, and no selection is made.
   template <bool AllKept>
   [[gnu::always_inline]] void advance_field(FieldLanes& f, const Lanes (&du)[6], const LaneMask& keep, Lanes (&sum)[6]) const noexcept {
     constexpr std::size_t last = static_cast<std::size_t>(N - 1);
@@ -434,7 +386,7 @@ struct Maxwell {
   /// diagonal is not zero when the origin is the area centroid of the CPs and t1 a principal axis of their areas:
   /// diag(k_n A, k_s A, k_s A, k_s (I_1 + I_2), k_n I_2, k_n I_1), A = sum a, I_1 = sum a x1^2, I_2 = sum a x2^2.
   static constexpr FieldStiffness contact_stiffness(double area, double i1, double i2, double kn, double ks) noexcept {
-    return {kn * area, ks * area, ks * area, ks * (i1 + i2), kn * i2, kn * i1, 0.0, 0.0};
+    return {kn * area, ks * area, ks * area, ks * (i1 + i2), kn * i2, kn * i1};
   }
   /// The per-CP branch stresses K B(x1, x2) h_i at (x1, x2) of a field in elongation form (h_i, one per branch):
   /// s[direction][branch].
@@ -456,36 +408,32 @@ struct Maxwell {
   }
 
  private:
-  // Four doubles in one vector (GCC's and Clang's vector extension): an AVX register with -mavx, else two SSE2
-  // registers.
-  using Quad = double __attribute__((vector_size(32)));
-
   // The kernel of element_stress_tile, on restrict parameters: GCC honours restrict on parameters, and without it
   // the alias checks between the tile and the increments exceed its limit and the loop stays scalar. Components
   // outermost and lanes innermost, with the branches unrolled inside: the tile is then read and written in address
   // order (a stream the hardware prefetches; lanes innermost over all 6 N rows at once touched 72 cache lines
   // alternately and cost more than the vectors saved), and every access is a full vector.
-  template <std::size_t Lanes>
+  template <std::size_t Width>
   static void update_tile(double* __restrict state, const double* __restrict elastic, const double* __restrict strain,
                           const double* __restrict decay, const double* __restrict gain, double* __restrict branch,
                           double* __restrict work) noexcept {
     constexpr std::size_t n = static_cast<std::size_t>(N);
-    for (std::size_t l = 0; l < Lanes; ++l) work[l] = 0.0;
+    for (std::size_t l = 0; l < Width; ++l) work[l] = 0.0;
     for (std::size_t c = 0; c < 6; ++c) {
-      double* __restrict const row = state + c * n * Lanes;
-      for (std::size_t l = 0; l < Lanes; ++l) {
-        const double increment = elastic[c * Lanes + l];
+      double* __restrict const row = state + c * n * Width;
+      for (std::size_t l = 0; l < Width; ++l) {
+        const double increment = elastic[c * Width + l];
         double old_sum = 0.0, new_sum = 0.0;
 #pragma GCC unroll 8
         for (std::size_t i = 0; i < n; ++i) {
-          const double old = row[i * Lanes + l];
+          const double old = row[i * Width + l];
           const double updated = old * decay[i] + gain[i] * increment;
-          row[i * Lanes + l] = updated;
+          row[i * Width + l] = updated;
           old_sum += old;
           new_sum += updated;
         }
-        branch[c * Lanes + l] = new_sum;
-        work[l] += 0.5 * (old_sum + new_sum) * strain[c * Lanes + l];
+        branch[c * Width + l] = new_sum;
+        work[l] += 0.5 * (old_sum + new_sum) * strain[c * Width + l];
       }
     }
   }

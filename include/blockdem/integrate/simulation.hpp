@@ -906,43 +906,33 @@ class Simulation {
       const std::size_t cs[4] = {contact_of(0), contact_of(1), contact_of(2), contact_of(3)};
       const std::uint32_t as[4] = {body_a[cs[0]], body_a[cs[1]], body_a[cs[2]], body_a[cs[3]]};
       const std::uint32_t bs[4] = {body_b[cs[0]], body_b[cs[1]], body_b[cs[2]], body_b[cs[3]]};
-      using T4 = TripleOf<Lanes>;
-      const auto of_blocks = [&](const Vec3* v, const std::uint32_t(&i)[4]) __attribute__((always_inline)) {
-        T4 t;
-        t.x = Lanes::of([&](int j) { return v[i[j]][0]; });
-        t.y = Lanes::of([&](int j) { return v[i[j]][1]; });
-        t.z = Lanes::of([&](int j) { return v[i[j]][2]; });
-        return t;
-      };
-      const auto of_contacts = [&](const Vec3* v) __attribute__((always_inline)) {
-        T4 t;
-        t.x = Lanes::of([&](int j) { return v[cs[j]][0]; });
-        t.y = Lanes::of([&](int j) { return v[cs[j]][1]; });
-        t.z = Lanes::of([&](int j) { return v[cs[j]][2]; });
-        return t;
+      // Lane j of v[index[j]], for the blocks (as, bs) or the contacts (cs) of the lanes.
+      const auto gather = [](const Vec3* v, const auto& index) __attribute__((always_inline)) {
+        return Triple{Lanes::of([&](int j) { return v[index[j]][0]; }), Lanes::of([&](int j) { return v[index[j]][1]; }),
+                      Lanes::of([&](int j) { return v[index[j]][2]; })};
       };
       Lanes ra[3][3];
       for (int i = 0; i < 3; ++i)
         for (int k = 0; k < 3; ++k) ra[i][k] = Lanes::of([&](int j) { return rotation[as[j]](i, k); });
-      const T4 n = turn(ra, of_contacts(normal_local));
-      const T4 t1 = turn(ra, of_contacts(tangent_local));
-      const T4 t2 = n.cross(t1);
-      const T4 arm_a = turn(ra, of_contacts(origin_local));           // origin - x_A
-      const T4 arm_b = of_blocks(position, as) + arm_a - of_blocks(position, bs);  // origin - x_B
+      const Triple n = turn(ra, gather(normal_local, cs));
+      const Triple t1 = turn(ra, gather(tangent_local, cs));
+      const Triple t2 = n.cross(t1);
+      const Triple arm_a = turn(ra, gather(origin_local, cs));           // origin - x_A
+      const Triple arm_b = gather(position, as) + arm_a - gather(position, bs);  // origin - x_B
       // The last move (velocities v(n-1/2)) is measured half a move back, at its middle, so that the same move
       // run backwards gives exactly the opposite increment (to third order): A turned back by h w_A (h = dt/2),
       // both centroids moved back by h v. The CP at origin + S, S = s1 t1 + s2 t2 fixed in A, then moves by
       // du = dt (u + W x S_mid), W = w_B - w_A, read in the mid-step frame (n, t1, t2)_mid = (I - h [w_A]x)(...).
       // In that frame W x S has the components (s2 W_1 - s1 W_2, -s2 W_n, s1 W_n): per CP the increment is
       // du0 plus four products.
-      const T4 wa = of_blocks(omega, as), wb = of_blocks(omega, bs);
-      const T4 dv = of_blocks(velocity, bs) - of_blocks(velocity, as);
-      const T4 wa_arm_a = wa.cross(arm_a);
-      const T4 u = increment_dt * (dv + wb.cross(arm_b + h * (dv - wa_arm_a)) - wa.cross(arm_a - h * wa_arm_a));
-      const T4 w = increment_dt * (wb - wa);
-      const T4 n_mid = n - h * wa.cross(n);
-      const T4 t1_mid = t1 - h * wa.cross(t1);
-      const T4 t2_mid = t2 - h * wa.cross(t2);
+      const Triple wa = gather(omega, as), wb = gather(omega, bs);
+      const Triple dv = gather(velocity, bs) - gather(velocity, as);
+      const Triple wa_arm_a = wa.cross(arm_a);
+      const Triple u = increment_dt * (dv + wb.cross(arm_b + h * (dv - wa_arm_a)) - wa.cross(arm_a - h * wa_arm_a));
+      const Triple w = increment_dt * (wb - wa);
+      const Triple n_mid = n - h * wa.cross(n);
+      const Triple t1_mid = t1 - h * wa.cross(t1);
+      const Triple t2_mid = t2 - h * wa.cross(t2);
       // The increment at the origin and the relative rotation, in the contact frame, and the resultants that the
       // CP loops give back (force along n, t1, t2 and moment about the origin): one lane per contact.
       const Lanes motion[6] = {dot(u, n_mid), dot(u, t1_mid), dot(u, t2_mid), dot(w, n_mid), dot(w, t1_mid), dot(w, t2_mid)};
@@ -1043,10 +1033,10 @@ class Simulation {
           }
         }
       }
-      const T4 f = combine(n, t1, t2, resultant[0], resultant[1], resultant[2]);
-      const T4 m_origin = combine(n, t1, t2, resultant[3], resultant[4], resultant[5]);
-      const T4 moment_a = -(arm_a.cross(f) + m_origin);
-      const T4 moment_b = arm_b.cross(f) + m_origin;
+      const Triple f = combine(n, t1, t2, resultant[0], resultant[1], resultant[2]);
+      const Triple m_origin = combine(n, t1, t2, resultant[3], resultant[4], resultant[5]);
+      const Triple moment_a = -(arm_a.cross(f) + m_origin);
+      const Triple moment_b = arm_b.cross(f) + m_origin;
       for (std::size_t lane = 0; lane < used; ++lane) {
         const std::size_t c = first + lane;
         contact_force[c] = f.vec(lane);

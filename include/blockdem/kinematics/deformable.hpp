@@ -573,7 +573,7 @@ class DeformableState {
   /// forces (per element). Per element the same operations in the same order as element_stress.
   void element_pass_tiles(model::Model& m, const Damping& damping, double increment_dt) {
     constexpr std::size_t lanes = element_tile;
-    using Lanes = typename Damping::template ElementLanes<lanes>;
+    using TileLanes = typename Damping::template ElementLanes<lanes>;
     auto& te = m.deformable.tetrahedra;
     const Vec3* __restrict const velocity = m.deformable.nodes.velocity.data();
     const auto count = te.size();
@@ -583,7 +583,7 @@ class DeformableState {
     for (std::ptrdiff_t c = 0; c < chunks; ++c) {
       const std::size_t first = static_cast<std::size_t>(c) * viscous_chunk;
       const std::size_t last = std::min(first + viscous_chunk, count);
-      alignas(64) Lanes elastic, strain, branch;  // Pa, -, Pa: per component and element of the tile
+      alignas(64) TileLanes elastic, strain, branch;  // Pa, -, Pa: per component and element of the tile
       alignas(64) std::array<double, lanes> work;  // J/m^3
       double viscous = 0.0;  // J, on this chunk's branches
       for (std::size_t begin = first; begin < last; begin += lanes) {
