@@ -13,8 +13,17 @@ namespace blockdem {
 
 inline constexpr std::size_t lane_count = 4;
 
-/// One mask per lane (all bits set or none).
-using LaneMask = long long __attribute__((vector_size(32)));
+/// One flag per lane, as a mask of all bits set or none (a struct for the reason Lanes is).
+struct LaneMask {
+  using Vector = long long __attribute__((vector_size(32)));
+  Vector v;
+
+  /// Lane j set where flag j is true.
+  [[gnu::always_inline]] static LaneMask of(bool a, bool b, bool c, bool d) {
+    return {Vector{a ? -1LL : 0LL, b ? -1LL : 0LL, c ? -1LL : 0LL, d ? -1LL : 0LL}};
+  }
+  [[gnu::always_inline]] bool operator[](std::size_t j) const { return v[j] != 0; }
+};
 
 struct Lanes {
   using Vector = double __attribute__((vector_size(32)));
@@ -49,6 +58,6 @@ struct Lanes {
 [[gnu::always_inline]] inline Lanes operator*(const Lanes& a, double s) { return {a.v * s}; }
 
 /// Lane by lane: a where `mask` is set, else b.
-[[gnu::always_inline]] inline Lanes select(const LaneMask& mask, const Lanes& a, const Lanes& b) { return {mask ? a.v : b.v}; }
+[[gnu::always_inline]] inline Lanes select(const LaneMask& mask, const Lanes& a, const Lanes& b) { return {mask.v ? a.v : b.v}; }
 
 }  // namespace blockdem

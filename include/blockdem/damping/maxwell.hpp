@@ -319,13 +319,9 @@ struct Maxwell {
   /// pass's increments as they are, closing and sliding positive; du[j]: the lanes of component j). Adds each
   /// field's work over the step, sum over CPs of a (old + new) / 2 . B q = q . sum_i (F_i before + F_i after) / 2,
   /// twice, to f.work, and gives in `sum` the generalised force at the end of the step, sum_i F_i (N, N m).
-  /// Taking du instead of q saves negating six numbers per step: G q = -G du, and q . R = -du . R.
-  ///
-  /// Lanes where `keep` is set are advanced; the others keep their values and give a zero force (contacts whose
-  /// CPs hold their own branch states, and the lanes without a contact at the end of a group). AllKept: every
-  /// lane is kept, and no selection is made.
-  template <bool AllKept>
-  [[gnu::always_inline]] void advance_field(FieldLanes& f, const Lanes (&du)[6], const LaneMask& keep, Lanes (&sum)[6]) const noexcept {
+  /// Taking du instead of q saves negating six numbers per step: G q = -G du, and q . R = -du . R. Every lane is
+  /// advanced (the overload with a mask advances only some).
+  [[gnu::always_inline]] void advance_field(FieldLanes& f, const Lanes (&du)[6], Lanes (&sum)[6]) const noexcept {
     constexpr std::size_t last = static_cast<std::size_t>(N - 1);
     // The factors in locals: the stores to the field could otherwise change them (both are doubles), and the
     // compiler would load them again for every component.
@@ -339,14 +335,27 @@ struct Maxwell {
       for (std::size_t i = 0; i < last; ++i) {
         const Lanes fi = f.forces[i][j];
         n += decay_excess[i] * fi;
-        const Lanes next = fi * decay[i] - gain[i] * g;
-        f.forces[i][j] = AllKept ? next : select(keep, next, fi);
+        f.forces[i][j] = fi * decay[i] - gain[i] * g;
       }
       w -= (r + n) * du[j];
-      f.forces[last][j] = AllKept ? n : select(keep, n, r);
-      sum[j] = AllKept ? n : select(keep, n, Lanes::zero());
+      f.forces[last][j] = n;
+      sum[j] = n;
     }
-    f.work = AllKept ? w : select(keep, w, f.work);
+    f.work = w;
+  }
+  /// advance_field for the lanes where `keep` is set; the others keep their values and give a zero force in `sum`
+  /// (contacts whose CPs hold their own branch states, and the lanes without a contact at the end of a group).
+  /// Every lane is advanced and the others put back from a copy, so that the advance has no selection. Rare, and
+  /// not inlined: inlined beside advance_field, the compiler would load the copy's values with the advance's and
+  /// keep them for this path, on the stack, in every group.
+  [[gnu::noinline, gnu::cold]] void advance_field(FieldLanes& f, const Lanes (&du)[6], const LaneMask& keep,
+                                                  Lanes (&sum)[6]) const noexcept {
+    const FieldLanes before = f;
+    advance_field(f, du, sum);
+    for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i)
+      for (std::size_t j = 0; j < 6; ++j) f.forces[i][j] = select(keep, f.forces[i][j], before.forces[i][j]);
+    f.work = select(keep, f.work, before.work);
+    for (std::size_t j = 0; j < 6; ++j) sum[j] = select(keep, sum[j], Lanes::zero());
   }
   /// field_force for four contacts, one per lane (zero where `keep` is not set).
   static void field_force(const FieldLanes& f, const LaneMask& keep, Lanes (&sum)[6]) noexcept {

@@ -114,7 +114,8 @@ struct ContactGroup {
   // CPs' spring_state. The field's stiffness is the diagonal of the contact's stiffness G on its generalised
   // elongation (complete(); diagonal because the frame is the CPs' principal one); its work the branches' viscous
   // work while in the field form, kept also after. Four contacts to a record, one per lane (contact c in
-  // field[c / 4], lane c % 4), as the contact pass advances them.
+  // field[c / 4], lane c % 4), as the contact pass advances them; field_form has four entries per record too, 0
+  // past the last contact, so that the contact pass reads a record's four in one load.
   static constexpr bool has_field = detail::ContactFieldOf<Damping>::present;
   using Field = typename detail::ContactFieldOf<Damping>::type;
   using FieldSum = typename detail::ContactFieldOf<Damping>::sum;  // sum over the branches of a field
@@ -147,10 +148,13 @@ struct ContactGroup {
                      const Vec3& tangent, bool in_field_form = false, const Field& f = Field{}, double viscous = 0.0) {
     if constexpr (has_field) {
       const std::size_t c = contacts();
-      if (c % lane_count == 0) field.push_back(FieldRecord{});
+      if (c % lane_count == 0) {
+        field.push_back(FieldRecord{});
+        field_form.resize(field_form.size() + lane_count, 0);
+      }
       set_field_forces(c, f);
       field_lanes(c).work.set(c % lane_count, 2.0 * viscous);
-      field_form.push_back(in_field_form ? 1 : 0);
+      field_form[c] = in_field_form ? 1 : 0;
     }
     body_a.push_back(a);
     body_b.push_back(b);

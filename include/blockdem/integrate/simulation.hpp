@@ -10,6 +10,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <map>
@@ -732,7 +733,8 @@ class Simulation {
     to.spring_state.assign(from.size(), typename To::SpringState{});
     if constexpr (To::has_field) {
       to.field.assign((from.contacts() + lane_count - 1) / lane_count, typename To::FieldRecord{});
-      to.field_form.assign(from.contacts(), damping_.contact_field ? 1 : 0);
+      to.field_form.assign(to.field.size() * lane_count, 0);
+      std::fill_n(to.field_form.begin(), from.contacts(), damping_.contact_field ? 1 : 0);
     }
     to.slip_dissipation.assign(from.size(), 0.0);
     to.viscous_dissipation.assign(from.size(), 0.0);
@@ -936,8 +938,30 @@ class Simulation {
       // The increment at the origin and the relative rotation, in the contact frame, and the resultants that the
       // CP loops give back (force along n, t1, t2 and moment about the origin): one lane per contact.
       const Lanes motion[6] = {dot(u, n_mid), dot(u, t1_mid), dot(u, t2_mid), dot(w, n_mid), dot(w, t1_mid), dot(w, t2_mid)};
-      Lanes resultant[6] = {};
-      [[maybe_unused]] bool released[4] = {};  // contacts in the field form with a CP that failed or opened
+      // The resultants of the four contacts (force along n, t1, t2 and moment about the origin), one lane per contact.
+      // With Maxwell fields they start from the fields' force: the four contacts' fields are advanced first, in
+      // lanes, and each contact's CP loop adds to its lane. Otherwise from zero: a lane without a contact is set to
+      // zero here (the others are written after their CP loop), so that a full group writes the lanes only once.
+      Lanes resultant[6];
+      [[maybe_unused]] unsigned released = 0;  // bit `lane`: the lane's contact is in the field form and a CP failed or opened
+      [[maybe_unused]] std::uint32_t forms = 0;  // byte `lane`: the lane's field_form (0 past the last contact)
+      constexpr std::uint32_t all_in_field_form = 0x01010101u;
+      if constexpr (G::has_field) {
+        std::memcpy(&forms, field_form + first, sizeof forms);
+        const auto keep = [&] {
+          return LaneMask::of(field_form[first], field_form[first + 1], field_form[first + 2], field_form[first + 3]);
+        };
+        if constexpr (AdvanceFields) {
+          if (forms == all_in_field_form) [[likely]]
+            damping.advance_field(field[lg], motion, resultant);
+          else
+            damping.advance_field(field[lg], motion, keep(), resultant);
+        } else {
+          Damping::field_force(field[lg], keep(), resultant);
+        }
+      } else if (used < lane_count) {
+        for (auto& r : resultant) r = Lanes::zero();
+      }
       for (std::size_t lane = 0; lane < used; ++lane) {
         const std::size_t c = first + lane;
         const double du0_n = motion[0][lane], du0_1 = motion[1][lane], du0_2 = motion[2][lane];
@@ -947,16 +971,19 @@ class Simulation {
         const double ks = L::shear_stiffness(p);
         // Resultants in the contact frame: force (normal, t1, t2) and moment about the origin.
         double fn = 0, f1 = 0, f2 = 0, mn = 0, m1 = 0, m2 = 0;
+        if constexpr (G::has_field) {
+          fn = resultant[0][lane], f1 = resultant[1][lane], f2 = resultant[2][lane];
+          mn = resultant[3][lane], m1 = resultant[4][lane], m2 = resultant[5][lane];
+        }
         const std::uint32_t begin = first_point[c], end = first_point[c + 1];
         // Maxwell branches in the contact-field form (damping::Maxwell::ContactField) are not evaluated per CP: the
         // field keeps each branch's generalised force on the contact, F_i = G h_i, advanced once per step under the
         // contact's generalised elongation increment q = (-du0, -w) through G q (G the contact's stiffness, diagonal
-        // in the frame of the CPs' areas); the field's force on the contact is sum_i F_i, added to the resultants
-        // after the CP loops of the four contacts, in lanes, and its tractions at the CPs are evaluated only when
-        // asked for (ContactGroup::traction_at). The CP loop runs the law only, has no branch on the form and only
-        // notes whether a CP failed or opened. A contact whose CPs keep their own branch states (field_form 0,
-        // after a CP released its branches) adds them after the CP loops too (add_own_branch_forces), so that this
-        // loop is the same for both forms.
+        // in the frame of the CPs' areas); the field's force on the contact is sum_i F_i, the resultants' start
+        // above, and its tractions at the CPs are evaluated only when asked for (ContactGroup::traction_at). The CP
+        // loop runs the law only, has no branch on the form and only notes whether a CP failed or opened. A contact
+        // whose CPs keep their own branch states (field_form 0, after a CP released its branches) adds them after
+        // the CP loops (add_own_branch_forces), so that this loop is the same for both forms.
         [[maybe_unused]] bool inactive = false;
         // The CP loop through restrict parameters: GCC honours restrict on parameters, not on the local pointers above,
         // and without it guards the loop with a run-time check that the histories do not overlap the CPs' coordinates.
@@ -1000,7 +1027,7 @@ class Simulation {
             if constexpr (cp_viscous) point_viscous[k] += area * dissipated;
           }
         }(plane_1, plane_2, area_of, history, spring_state, slip_dissipation, viscous_dissipation);
-        if constexpr (G::has_field) released[lane] = inactive;
+        if constexpr (G::has_field) released |= static_cast<unsigned>(inactive) << lane;
         resultant[0].set(lane, fn);
         resultant[1].set(lane, f1);
         resultant[2].set(lane, f2);
@@ -1008,27 +1035,14 @@ class Simulation {
         resultant[4].set(lane, m1);
         resultant[5].set(lane, m2);
       }
-      // The contact fields of the four contacts, one per lane, after their CP loops (so that the fields' values
-      // are not live across them). A lane advances if its contact is in the field form.
+      // Contacts whose CPs keep their own branch states, and contacts in the field form with a CP that released its
+      // branches in this step: both rare.
       if constexpr (G::has_field) {
-        const LaneMask keep{used > 0 && field_form[first] ? -1LL : 0LL, used > 1 && field_form[first + 1] ? -1LL : 0LL,
-                            used > 2 && field_form[first + 2] ? -1LL : 0LL, used > 3 && field_form[first + 3] ? -1LL : 0LL};
-        const bool all_kept = keep[0] & keep[1] & keep[2] & keep[3];
-        Lanes sum[6];
-        if constexpr (AdvanceFields) {
-          if (all_kept) [[likely]]
-            damping.template advance_field<true>(field[lg], motion, keep, sum);
-          else
-            damping.template advance_field<false>(field[lg], motion, keep, sum);
-        } else {
-          Damping::field_force(field[lg], keep, sum);
-        }
-        for (std::size_t j = 0; j < 6; ++j) resultant[j] += sum[j];
-        if (!all_kept || (released[0] | released[1] | released[2] | released[3])) [[unlikely]] {
+        if (forms != all_in_field_form || released != 0) [[unlikely]] {
           for (std::size_t lane = 0; lane < used; ++lane) {
-            if (!keep[lane])
+            if (!field_form[first + lane])
               add_own_branch_forces(g, first + lane, motion, lane, increment_dt, resultant);
-            else if (released[lane])
+            else if (released >> lane & 1u)
               release_field<AdvanceFields>(g, first + lane, motion, lane, resultant);
           }
         }
