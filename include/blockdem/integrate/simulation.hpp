@@ -943,7 +943,7 @@ class Simulation {
       // lanes, and each contact's CP loop adds to its lane. Otherwise from zero: a lane without a contact is set to
       // zero here (the others are written after their CP loop), so that a full group writes the lanes only once.
       Lanes resultant[6];
-      [[maybe_unused]] unsigned released = 0;  // bit `lane`: the lane's contact is in the field form and a CP failed or opened
+      [[maybe_unused]] unsigned released = 0;  // bit `lane`: a CP of the lane's contact failed or opened in this step
       [[maybe_unused]] std::uint32_t forms = 0;  // byte `lane`: the lane's field_form (0 past the last contact)
       constexpr std::uint32_t all_in_field_form = 0x01010101u;
       if constexpr (G::has_field) {
