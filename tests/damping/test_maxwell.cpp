@@ -131,6 +131,11 @@ TEST_CASE("maxwell: the contact fields of four contacts (FieldLanes) give the re
     const auto g = M::contact_stiffness(area, i1, i2, kn, ks);
     for (std::size_t j = 0; j < 6; ++j) lanes.stiffness[j].set(c, g[j]);
   }
+  // Adds a B^T s, the generalised force of stresses s (normal, shear 1, shear 2) on area a at (x1, x2), to r.
+  const auto add_generalised = [](M::Generalised& r, double x1, double x2, double a, const std::array<double, 3>& s) {
+    r = {r[0] + a * s[0], r[1] + a * s[1], r[2] + a * s[2], r[3] + a * (x1 * s[2] - x2 * s[1]), r[4] + a * x2 * s[0],
+         r[5] - a * x1 * s[0]};
+  };
   std::array<std::array<std::array<M::ContactState, 3>, 4>, 4> own{};  // [contact][CP][direction]
   std::array<double, 4> own_work{};
   // The two differ by rounding only: relative to the largest force and moment.
@@ -175,8 +180,7 @@ TEST_CASE("maxwell: the contact fields of four contacts (FieldLanes) give the re
         double work = 0;
         const auto s = m.spring_stresses(own[c][p], kn, ks, e, h, true, work);
         own_work[c] += a * work;
-        want = {want[0] + a * s[0], want[1] + a * s[1], want[2] + a * s[2], want[3] + a * (x1 * s[2] - x2 * s[1]),
-                want[4] + a * x2 * s[0], want[5] - a * x1 * s[0]};
+        add_generalised(want, x1, x2, a, s);
       }
       for (std::size_t j = 0; j < 6; ++j) {
         largest = std::max(largest, std::abs(want[j]));
@@ -192,8 +196,7 @@ TEST_CASE("maxwell: the contact fields of four contacts (FieldLanes) give the re
         for (std::size_t p = 0; p < 4; ++p) {
           const auto [x1, x2, a] = contact_points[c][p];
           const std::array<double, 3> s{own[c][p][0][i], own[c][p][1][i], own[c][p][2][i]};
-          branch = {branch[0] + a * s[0], branch[1] + a * s[1], branch[2] + a * s[2], branch[3] + a * (x1 * s[2] - x2 * s[1]),
-                    branch[4] + a * x2 * s[0], branch[5] - a * x1 * s[0]};
+          add_generalised(branch, x1, x2, a, s);
         }
         for (std::size_t j = 0; j < 6; ++j) branch_deviation = std::max(branch_deviation, std::abs(forces[i][j] - branch[j]));
       }

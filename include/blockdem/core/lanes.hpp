@@ -22,7 +22,6 @@ struct LaneMask {
   [[gnu::always_inline]] static LaneMask of(bool a, bool b, bool c, bool d) {
     return {Vector{a ? -1LL : 0LL, b ? -1LL : 0LL, c ? -1LL : 0LL, d ? -1LL : 0LL}};
   }
-  [[gnu::always_inline]] bool operator[](std::size_t j) const { return v[j] != 0; }
 };
 
 struct Lanes {

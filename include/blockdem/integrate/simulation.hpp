@@ -754,19 +754,6 @@ class Simulation {
     m2 -= x1 * an;
   }
 
-  /// Adds a generalised force (N, N m: the force along n, t1, t2 and the moment about the origin along n, t1, t2)
-  /// to a contact's resultants.
-  template <class R>
-  [[gnu::always_inline]] static void add_resultant(const R& r, double& fn, double& f1, double& f2, double& mn, double& m1,
-                                                   double& m2) {
-    fn += r[0];
-    f1 += r[1];
-    f2 += r[2];
-    mn += r[3];
-    m1 += r[4];
-    m2 += r[5];
-  }
-
   /// Adds resultants in the contact frame (force along n, t1, t2, moment about the origin along n, t1, t2) to lane
   /// `lane` of the contact pass's resultants.
   [[gnu::always_inline]] static void add_to_lane(Lanes (&resultant)[6], std::size_t lane, const std::array<double, 6>& r) {
