@@ -8,6 +8,11 @@
 // With --threads N > 1 every turn is run twice, on one thread and on N, and the report adds the speed-up of N
 // threads over one at each quantile (results do not depend on the number of threads, so the runs stay alike).
 //
+// A ratio of two quantiles compares two distributions, each with its own share of disturbed steps. The report also
+// pairs the turns: per round, the ratio of the median steps of two policies' turns (a few milliseconds apart, under the
+// same conditions), and per turn the speed-up of N threads; then quantiles of those paired ratios. When the host
+// slows everything down for a while, both turns of a pair are slow and their ratio keeps the cost of the code.
+//
 // On a virtual machine whose other tenants come and go, a whole benchmark run of one binary can be 30 % slower
 // than the next; the ratio of two runs is then noise. Taking turns within one process keeps the ratio to about
 // 1 %, run to run.
@@ -43,6 +48,7 @@ struct Contender {
   std::unique_ptr<model::Model> model = std::make_unique<model::Model>(make_wall());
   Simulation<Damping, Law> simulation{*model, make_damping<Damping>(), [](int, int) { return parameters<Law>(); }};
   std::vector<double> step_us, threaded_step_us;
+  std::vector<double> turn_us, threaded_turn_us;  // the median step of each turn
 
   Contender() {
     for (int i = 0; i < 20; ++i) simulation.step();  // warm up, let it settle a little (as bench_wall)
@@ -50,21 +56,30 @@ struct Contender {
   /// Runs `steps` steps on one thread, then as many on `threads` if more than one; the first step of each is not
   /// kept (its data were pushed out of the caches by the others).
   void turn(int steps, int threads) {
-    run(steps, 1, step_us);
-    if (threads > 1) run(steps, threads, threaded_step_us);
+    run(steps, 1, step_us, turn_us);
+    if (threads > 1) run(steps, threads, threaded_step_us, threaded_turn_us);
   }
 
  private:
-  void run(int steps, int threads, std::vector<double>& into) {
+  void run(int steps, int threads, std::vector<double>& into, std::vector<double>& turns) {
     omp_set_num_threads(threads);
+    const std::size_t before = into.size();
     for (int i = 0; i < steps; ++i) {
       const auto start = std::chrono::steady_clock::now();
       simulation.step();
       const auto stop = std::chrono::steady_clock::now();
       if (i > 0) into.push_back(std::chrono::duration<double, std::micro>(stop - start).count());
     }
+    turns.push_back(quantile({into.begin() + static_cast<std::ptrdiff_t>(before), into.end()}, 0.5));
   }
 };
+
+/// Quantiles q25 / q50 / q75 of the paired ratios top[i] / bottom[i].
+void report_paired(const char* what, const std::vector<double>& top, const std::vector<double>& bottom) {
+  std::vector<double> r(top.size());
+  for (std::size_t i = 0; i < r.size(); ++i) r[i] = top[i] / bottom[i];
+  std::printf("  %-38s %.3f  %.3f  %.3f\n", what, quantile(r, 0.25), quantile(r, 0.5), quantile(r, 0.75));
+}
 
 /// The table of one thread count: step times, ns per CP-step and the Maxwell<3>/Mass ratio at three quantiles.
 void report(const std::vector<double>& none, const std::vector<double>& mass, const std::vector<double>& maxwell, double points) {
@@ -99,6 +114,19 @@ void compare(const std::string& law, int rounds, int steps, int threads) {
       const auto up = [&](const auto& c) { return quantile(c.step_us, f) / quantile(c.threaded_step_us, f); };
       std::printf("q%02.0f                          | %5.2f %5.2f %5.2f\n", 100 * f, up(none), up(mass), up(maxwell));
     }
+  }
+  std::printf("paired (median steps of turns taken together), q25 / q50 / q75 over the %d rounds:\n", rounds);
+  report_paired("Maxwell<3> / Mass, 1 thread", maxwell.turn_us, mass.turn_us);
+  report_paired("Mass / None, 1 thread", mass.turn_us, none.turn_us);
+  if (threads > 1) {
+    report_paired(("Maxwell<3> / Mass, " + std::to_string(threads) + " threads").c_str(), maxwell.threaded_turn_us,
+                  mass.threaded_turn_us);
+    const auto speed_up = [&](const char* name, const auto& c) {
+      report_paired(("speed-up of " + std::to_string(threads) + " threads, " + name).c_str(), c.turn_us, c.threaded_turn_us);
+    };
+    speed_up("None", none);
+    speed_up("Mass", mass);
+    speed_up("Maxwell<3>", maxwell);
   }
 }
 
