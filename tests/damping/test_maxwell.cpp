@@ -157,9 +157,10 @@ TEST_CASE("maxwell: the contact fields of four contacts (FieldLanes) give the re
     }
     const M::FieldLanes before = lanes;
     Lanes sum[6];
-    if (h > 0.0 && lane_3_kept)
-      m.advance_field(lanes, du, sum);
-    else if (h > 0.0)
+    if (h > 0.0 && lane_3_kept) {
+      m.advance_field(lanes, du);
+      for (std::size_t j = 0; j < 6; ++j) sum[j] = M::field_sum(lanes, j);
+    } else if (h > 0.0)
       m.advance_field(lanes, du, keep, sum);
     else
       M::field_force(lanes, keep, sum);
@@ -221,7 +222,8 @@ TEST_CASE("maxwell: the contact fields of four contacts (FieldLanes) give the re
   Lanes du[6], sum_a[6], sum_b[6];
   for (std::size_t j = 0; j < 6; ++j) du[j] = Lanes::of(1e-7, -2e-7, 3e-7, 4e-8) * (1.0 + static_cast<double>(j));
   const auto all = LaneMask::of(true, true, true, true);
-  m.advance_field(a, du, sum_a);
+  m.advance_field(a, du);
+  for (std::size_t j = 0; j < 6; ++j) sum_a[j] = M::field_sum(a, j);
   m.advance_field(b, du, all, sum_b);
   for (std::size_t c = 0; c < 4; ++c) {
     CHECK(a.work[c] == b.work[c]);

@@ -313,15 +313,20 @@ struct Maxwell {
     Lanes stiffness[6];
     Lanes work;
   };
+  /// Component j of the generalised force sum_i F_i of four fields, one per lane (N, N m; the last slot, as in
+  /// ContactField).
+  [[gnu::always_inline]] static Lanes field_sum(const FieldLanes& f, std::size_t j) noexcept {
+    return f.forces[static_cast<std::size_t>(N - 1)][j];
+  }
   /// Advances the fields of four contacts, one per lane, by one step of the timestep prepared for (prepare; only
   /// when time passes: with none, the fields are unchanged and field_force gives their force) under each
   /// contact's generalised displacement increment du = -q (du0 at the origin, relative rotation w; the contact
   /// pass's increments as they are, closing and sliding positive; du[j]: the lanes of component j). Adds each
   /// field's work over the step, sum over CPs of a (old + new) / 2 . B q = q . sum_i (F_i before + F_i after) / 2,
-  /// twice, to f.work, and gives in `sum` the generalised force at the end of the step, sum_i F_i (N, N m).
+  /// twice, to f.work; field_sum then gives the generalised force at the end of the step, sum_i F_i (N, N m).
   /// Taking du instead of q saves negating six numbers per step: G q = -G du, and q . R = -du . R. Every lane is
   /// advanced (the overload with a mask advances only some).
-  [[gnu::always_inline]] void advance_field(FieldLanes& f, const Lanes (&du)[6], Lanes (&sum)[6]) const noexcept {
+  [[gnu::always_inline]] void advance_field(FieldLanes& f, const Lanes (&du)[6]) const noexcept {
     constexpr std::size_t last = static_cast<std::size_t>(N - 1);
     // The factors in locals: the stores to the field could otherwise change them (both are doubles), and the
     // compiler would load them again for every component.
@@ -339,23 +344,23 @@ struct Maxwell {
       }
       w -= (r + n) * du[j];
       f.forces[last][j] = n;
-      sum[j] = n;
     }
     f.work = w;
   }
-  /// advance_field for the lanes where `keep` is set; the others keep their values and give a zero force in `sum`
-  /// (contacts whose CPs hold their own branch states, and the lanes without a contact at the end of a group).
+  /// advance_field for the lanes where `keep` is set, giving in `sum` their generalised force at the end of the step;
+  /// the others keep their values and give a zero force in `sum` (contacts whose CPs hold their own branch states,
+  /// and the lanes without a contact at the end of a group).
   /// Every lane is advanced and the others put back from a copy, so that the advance has no selection. Rare, and
   /// not inlined: inlined beside advance_field, the compiler would load the copy's values with the advance's and
   /// keep them for this path, on the stack, in every group.
   [[gnu::noinline, gnu::cold]] void advance_field(FieldLanes& f, const Lanes (&du)[6], const LaneMask& keep,
                                                   Lanes (&sum)[6]) const noexcept {
     const FieldLanes before = f;
-    advance_field(f, du, sum);
+    advance_field(f, du);
+    for (std::size_t j = 0; j < 6; ++j) sum[j] = select(keep, field_sum(f, j), Lanes::zero());
     for (std::size_t i = 0; i < static_cast<std::size_t>(N); ++i)
       for (std::size_t j = 0; j < 6; ++j) f.forces[i][j] = select(keep, f.forces[i][j], before.forces[i][j]);
     f.work = select(keep, f.work, before.work);
-    for (std::size_t j = 0; j < 6; ++j) sum[j] = select(keep, sum[j], Lanes::zero());
   }
   /// field_force for four contacts, one per lane (zero where `keep` is not set).
   static void field_force(const FieldLanes& f, const LaneMask& keep, Lanes (&sum)[6]) noexcept {

@@ -925,11 +925,15 @@ class Simulation {
       // The increment at the origin and the relative rotation, in the contact frame, and the resultants that the
       // CP loops give back (force along n, t1, t2 and moment about the origin): one lane per contact.
       const Lanes motion[6] = {dot(u, n_mid), dot(u, t1_mid), dot(u, t2_mid), dot(w, n_mid), dot(w, t1_mid), dot(w, t2_mid)};
-      // The resultants of the four contacts (force along n, t1, t2 and moment about the origin), one lane per contact.
-      // With Maxwell fields they start from the fields' force: the four contacts' fields are advanced first, in
-      // lanes, and each contact's CP loop adds to its lane. Otherwise from zero: a lane without a contact is set to
-      // zero here (the others are written after their CP loop), so that a full group writes the lanes only once.
+      // The resultants of the four contacts (force along n, t1, t2 and moment about the origin), one lane per contact:
+      // each contact's CP loop sums from zero and writes its lane; a lane without a contact is set to zero here, so
+      // that a full group writes the lanes only once. With Maxwell fields, the four contacts' fields are advanced
+      // first, in lanes, and their force is added to the resultants after the CP loops, in vectors: when all four
+      // are in the field form, as the fields keep it (the record, just written, is still in L1); else as the
+      // masked advance gives it in `field_sum` (zero for the lanes whose CPs keep their own branch states). The
+      // CP loops are then those of the policies without fields, and need no lane of the fields' force each.
       Lanes resultant[6];
+      [[maybe_unused]] Lanes field_sum[6];  // the fields' force where not all four lanes are in the field form
       [[maybe_unused]] unsigned released = 0;  // bit `lane`: a CP of the lane's contact failed or opened in this step
       [[maybe_unused]] std::uint32_t forms = 0;  // byte `lane`: the lane's field_form (0 past the last contact)
       constexpr std::uint32_t all_in_field_form = 0x01010101u;
@@ -940,15 +944,15 @@ class Simulation {
         };
         if constexpr (AdvanceFields) {
           if (forms == all_in_field_form) [[likely]]
-            damping.advance_field(field[lg], motion, resultant);
+            damping.advance_field(field[lg], motion);
           else
-            damping.advance_field(field[lg], motion, keep(), resultant);
+            damping.advance_field(field[lg], motion, keep(), field_sum);
         } else {
-          Damping::field_force(field[lg], keep(), resultant);
+          Damping::field_force(field[lg], keep(), field_sum);
         }
-      } else if (used < lane_count) {
-        for (auto& r : resultant) r = Lanes::zero();
       }
+      if (used < lane_count)
+        for (auto& r : resultant) r = Lanes::zero();
       for (std::size_t lane = 0; lane < used; ++lane) {
         const std::size_t c = first + lane;
         const double du0_n = motion[0][lane], du0_1 = motion[1][lane], du0_2 = motion[2][lane];
@@ -958,16 +962,12 @@ class Simulation {
         const double ks = L::shear_stiffness(p);
         // Resultants in the contact frame: force (normal, t1, t2) and moment about the origin.
         double fn = 0, f1 = 0, f2 = 0, mn = 0, m1 = 0, m2 = 0;
-        if constexpr (G::has_field) {
-          fn = resultant[0][lane], f1 = resultant[1][lane], f2 = resultant[2][lane];
-          mn = resultant[3][lane], m1 = resultant[4][lane], m2 = resultant[5][lane];
-        }
         const std::uint32_t begin = first_point[c], end = first_point[c + 1];
         // Maxwell branches in the contact-field form (damping::Maxwell::ContactField) are not evaluated per CP: the
         // field keeps each branch's generalised force on the contact, F_i = G h_i, advanced once per step under the
         // contact's generalised elongation increment q = (-du0, -w) through G q (G the contact's stiffness, diagonal
-        // in the frame of the CPs' areas); the field's force on the contact is sum_i F_i, the resultants' start
-        // above, and its tractions at the CPs are evaluated only when asked for (ContactGroup::traction_at). The CP
+        // in the frame of the CPs' areas); the field's force on the contact is sum_i F_i, added to the resultants
+        // after the CP loops, and its tractions at the CPs are evaluated only when asked for (ContactGroup::traction_at). The CP
         // loop runs the law only, has no branch on the form and only notes whether a CP failed or opened. A contact
         // whose CPs keep their own branch states (field_form 0, after a CP released its branches) adds them after
         // the CP loops (add_own_branch_forces), so that this loop is the same for both forms.
@@ -1022,9 +1022,14 @@ class Simulation {
         resultant[4].set(lane, m1);
         resultant[5].set(lane, m2);
       }
-      // Contacts whose CPs keep their own branch states, and contacts in the field form with a CP that released its
-      // branches in this step: both rare.
+      // The fields' force; then contacts whose CPs keep their own branch states, and contacts in the field form
+      // with a CP that released its branches in this step: both rare.
       if constexpr (G::has_field) {
+        if (AdvanceFields && forms == all_in_field_form) [[likely]] {
+          for (std::size_t j = 0; j < 6; ++j) resultant[j] += Damping::field_sum(field[lg], j);
+        } else {
+          for (std::size_t j = 0; j < 6; ++j) resultant[j] += field_sum[j];
+        }
         if (forms != all_in_field_form || released != 0) [[unlikely]] {
           for (std::size_t lane = 0; lane < used; ++lane) {
             if (!field_form[first + lane])
