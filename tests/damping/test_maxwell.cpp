@@ -129,7 +129,7 @@ TEST_CASE("maxwell: the contact fields of four contacts (FieldLanes) give the re
     REQUIRE(std::abs(product) < 1e-15 * (i1 + i2));
     REQUIRE(std::abs(i1 - i2) > 0.1 * (i1 + i2));  // not a symmetric layout
     const auto g = M::contact_stiffness(area, i1, i2, kn, ks);
-    for (std::size_t j = 0; j < 6; ++j) lanes.stiffness[j].set(c, g[j]);
+    for (std::size_t j = 0; j < 6; ++j) lanes.stiffness[M::stiffness_slot(j)].set(c, g[j]);
   }
   // Adds a B^T s, the generalised force of stresses s (normal, shear 1, shear 2) on area a at (x1, x2), to r.
   const auto add_generalised = [](M::Generalised& r, double x1, double x2, double a, const std::array<double, 3>& s) {

@@ -306,13 +306,19 @@ struct Maxwell {
   bool contact_field = true;
 
   /// The fields of four contacts, one per lane, as the contact pass advances them (ContactGroup keeps them so):
-  /// forces[i][j] holds component j of F_i (the last slot their sum, as in ContactField), stiffness[j] that of
-  /// diag G, work twice the branches' viscous work.
-  struct FieldLanes {
+  /// forces[i][j] holds component j of F_i (the last slot their sum, as in ContactField), stiffness[stiffness_slot(j)]
+  /// component j of diag G, work twice the branches' viscous work. diag G has five distinct components (its two
+  /// shear ones are both k_s A, contact_stiffness), so that a record is (6 N + 6) vectors of four, whole cache lines:
+  /// the contact pass streams the records, and fewer bytes per contact make the Maxwell steps less sensitive to
+  /// what else uses the memory.
+  struct alignas(64) FieldLanes {
     Lanes forces[static_cast<std::size_t>(N)][6];
-    Lanes stiffness[6];
+    Lanes stiffness[5];
     Lanes work;
   };
+  static_assert(sizeof(FieldLanes) == (6 * N + 6) * sizeof(Lanes), "a field record is whole cache lines, unpadded");
+  /// The slot of FieldLanes::stiffness that holds component j of diag G: G_11 and G_22 share slot 1.
+  static constexpr std::size_t stiffness_slot(std::size_t j) noexcept { return j < 2 ? j : j - 1; }
   /// Component j of the generalised force sum_i F_i of four fields, one per lane (N, N m; the last slot, as in
   /// ContactField).
   [[gnu::always_inline]] static Lanes field_sum(const FieldLanes& f, std::size_t j) noexcept {
@@ -334,7 +340,7 @@ struct Maxwell {
     const double gain_sum = gain_sum_;
     Lanes w = f.work;
     for (std::size_t j = 0; j < 6; ++j) {
-      const Lanes g = f.stiffness[j] * du[j];  // G du = -G q
+      const Lanes g = f.stiffness[stiffness_slot(j)] * du[j];  // G du = -G q
       const Lanes r = f.forces[last][j];       // sum_i F_i before the step
       Lanes n = r * decay[last] - gain_sum * g;
       for (std::size_t i = 0; i < last; ++i) {

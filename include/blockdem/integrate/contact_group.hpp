@@ -199,7 +199,7 @@ struct ContactGroup {
   /// The diagonal of contact c's stiffness G (Damping::FieldStiffness).
   auto field_stiffness(std::size_t c) const {
     typename Damping::FieldStiffness g{};
-    for (std::size_t j = 0; j < 6; ++j) g[j] = field_lanes(c).stiffness[j][c % lane_count];
+    for (std::size_t j = 0; j < 6; ++j) g[j] = field_lanes(c).stiffness[Damping::stiffness_slot(j)][c % lane_count];
     return g;
   }
   /// The viscous work of contact c's field (J), and adding to it.
@@ -268,7 +268,7 @@ struct ContactGroup {
         }
         const auto& p = properties[property[c]];
         const auto g = Damping::contact_stiffness(a0, a11, a22, Law::normal_stiffness(p), Law::shear_stiffness(p));
-        for (std::size_t j = 0; j < 6; ++j) field_lanes(c).stiffness[j].set(c % lane_count, g[j]);
+        for (std::size_t j = 0; j < 6; ++j) field_lanes(c).stiffness[Damping::stiffness_slot(j)].set(c % lane_count, g[j]);
         const Field h = field_forces(c);
         std::array<typename Damping::Generalised, std::tuple_size_v<Field>> forces{};  // F = G h (begin_contact: h)
         for (std::size_t b = 0; b < forces.size(); ++b)
