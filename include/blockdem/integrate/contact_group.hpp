@@ -268,7 +268,9 @@ struct ContactGroup {
         }
         const auto& p = properties[property[c]];
         const auto g = Damping::contact_stiffness(a0, a11, a22, Law::normal_stiffness(p), Law::shear_stiffness(p));
-        for (std::size_t j = 0; j < 6; ++j) field_lanes(c).stiffness[Damping::stiffness_slot(j)].set(c % lane_count, g[j]);
+        BLOCKDEM_ASSERT(g[1] == g[2]);  // the record keeps one slot for both (Damping::stiffness_slot)
+        for (std::size_t j = 0; j < 6; ++j)
+          field_lanes(c).stiffness[Damping::stiffness_slot(j)].set(c % lane_count, g[j]);
         const Field h = field_forces(c);
         std::array<typename Damping::Generalised, std::tuple_size_v<Field>> forces{};  // F = G h (begin_contact: h)
         for (std::size_t b = 0; b < forces.size(); ++b)

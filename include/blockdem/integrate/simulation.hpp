@@ -967,10 +967,11 @@ class Simulation {
         // field keeps each branch's generalised force on the contact, F_i = G h_i, advanced once per step under the
         // contact's generalised elongation increment q = (-du0, -w) through G q (G the contact's stiffness, diagonal
         // in the frame of the CPs' areas); the field's force on the contact is sum_i F_i, added to the resultants
-        // after the CP loops, and its tractions at the CPs are evaluated only when asked for (ContactGroup::traction_at). The CP
-        // loop runs the law only, has no branch on the form and only notes whether a CP failed or opened. A contact
-        // whose CPs keep their own branch states (field_form 0, after a CP released its branches) adds them after
-        // the CP loops (add_own_branch_forces), so that this loop is the same for both forms.
+        // after the CP loops, and its tractions at the CPs are evaluated only when asked for
+        // (ContactGroup::traction_at). The CP loop runs the law only, has no branch on the form and only notes
+        // whether a CP failed or opened. A contact whose CPs keep their own branch states (field_form 0, after a CP
+        // released its branches) adds them after the CP loops (add_own_branch_forces), so that this loop is the same
+        // for both forms.
         [[maybe_unused]] bool inactive = false;
         // The CP loop through restrict parameters: GCC honours restrict on parameters, not on the local pointers above,
         // and without it guards the loop with a run-time check that the histories do not overlap the CPs' coordinates.
