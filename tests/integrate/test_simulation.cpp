@@ -6,7 +6,10 @@
 #include "../approx.hpp"
 #include "../area_frame.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "blockdem/contact/elastic.hpp"
@@ -466,4 +469,255 @@ TEST_CASE("contact group: a Maxwell field refuses CPs whose origin is not their 
   plain.begin_contact(3, 7, 0, Vec3::Zero(), Vec3::UnitZ(), Vec3::UnitX());
   for (const auto& [x1, x2, a] : layouts[0]) plain.add_point(x1, x2, a, {}, {}, 0.0, 0.0);
   CHECK_NOTHROW(plain.complete(8));
+}
+
+// ---- density scaling of rigid-only models, static mass scaling ----
+
+namespace {
+
+using ElasticSettle = Simulation<damping::Local, contact::Elastic>;
+const auto stiff_joint = [](int, int) { return contact::Elastic::Parameters(1e10, 4e9); };
+
+/// Steps `steps` times; the times (s) and the block's height above the one it started from (m) after each step.
+template <class Sim>
+std::pair<std::vector<double>, std::vector<double>> record_height(Sim& sim, std::size_t block, int steps) {
+  const auto& b = sim.model().bodies;
+  const double z0 = b.position[block].z();
+  std::vector<double> t, z;
+  for (int i = 0; i < steps; ++i) {
+    sim.step();
+    t.push_back(sim.time());
+    z.push_back(b.position[block].z() - z0);
+  }
+  return {t, z};
+}
+
+bool all_finite(const model::RigidBodies& b, std::size_t i) {
+  return b.position[i].allFinite() && b.velocity[i].allFinite() && b.angular_velocity[i].allFinite() &&
+         b.orientation[i].coeffs().allFinite() && b.force[i].allFinite() && b.moment[i].allFinite();
+}
+
+}  // namespace
+
+TEST_CASE("density scaling: a rigid-only model switched to the mixed step by scaling steps on, its state finite") {
+  // Regression: scale_density_to() set up the deformable state of a rigid-only model without its gather lists, and
+  // the first step read past them (DeformableState::gather_rigid).
+  auto s = test::block_on_base(0.2, 0.2, 0.2);
+  ElasticSettle sim(s.model, damping::Local{}, stiff_joint);
+  REQUIRE_FALSE(sim.mixed());
+  const auto r = sim.scale_density_to(4 * sim.timestep());
+  CHECK(sim.mixed());
+  CHECK(r.scaled_blocks == 1);
+  CHECK(r.mass_increase_percent > 0);
+  for (int i = 0; i < 1000; ++i) sim.step();
+  CHECK(all_finite(s.model.bodies, s.block));
+  CHECK(std::isfinite(sim.unbalanced_force_ratio()));
+  CHECK(sim.steps() == 1000);
+}
+
+TEST_CASE("density scaling: a scaled rigid block settles where the unscaled one does (statics do not depend on mass)") {
+  // Reference: a 0.2 m box of 2000 kg/m^3 on elastic CPs over 0.04 m^2 sinks by its real weight over k_n A,
+  // rho h g / k_n = 3.924e-7 m, scaled or not: the weight stays that of the real mass.
+  struct Settled {
+    Vec3 position;
+    DensityScaling scaling;
+  };
+  const auto settle = [](bool scaled) {
+    auto s = test::block_on_base(0.2, 0.2, 0.2);
+    ElasticSettle sim(s.model, damping::Local{}, stiff_joint);
+    Settled r;
+    if (scaled) r.scaling = sim.scale_density_to(4 * sim.timestep());
+    CHECK(sim.solve_to_equilibrium(1e-10, 200000));
+    r.position = s.model.bodies.position[s.block];
+    return r;
+  };
+  const Vec3 start = test::block_on_base(0.2, 0.2, 0.2).model.bodies.position[1];
+  const auto unscaled = settle(false);
+  const auto scaled = settle(true);
+  const double sink = 2000 * 0.2 * 9.81 / 1e10;
+  CHECK(start.z() - unscaled.position.z() == test::approx(sink).epsilon(1e-6));
+  CHECK(start.z() - scaled.position.z() == test::approx(sink).epsilon(1e-6));
+  CHECK((scaled.position - unscaled.position).norm() <= 1e-6 * sink);
+  CHECK(unscaled.scaling.mass_increase_percent == 0);
+  CHECK(scaled.scaling.mass_increase_percent > 0);
+  CHECK(scaled.scaling.max_density_scaling_factor > 10);  // the target is four times the block's own limit
+}
+
+TEST_CASE("density scaling: a scaled rigid block vibrates at sqrt(k A / m_scaled) about its real-weight equilibrium") {
+  // Reference: SDOF under gravity released at rest on an undeformed joint: z(t) = -d (1 - cos omega t) with
+  // omega = sqrt(k_n A / m_scaled) (the inertia scaled) and d = m_real g / (k_n A) (the weight real), so the lowest
+  // point is -2 d.
+  auto s = test::block_on_base(1, 1, 1);
+  s.model.bodies.fixity[s.block] = vertical_only;
+  const double kn = 2000.0 * std::pow(two_pi * 100.0, 2);  // 100 Hz with the real mass
+  Simulation<damping::None, contact::Elastic> sim(s.model, damping::None{}, [&](int, int) { return contact::Elastic::Parameters(kn, kn); });
+  const auto r = sim.scale_density_to(4 * sim.timestep());
+  const double mass = s.model.bodies.mass[s.block];
+  CHECK(mass == test::approx(16 * 2000.0).epsilon(1e-6));  // (4 dt)^2: the translational limit is the block's
+  CHECK(r.scaled_blocks == 1);
+  const double f = std::sqrt(kn / mass) / two_pi;
+  sim.set_timestep(1.0 / (400 * f));  // resolve the vibration: the masses are what is checked
+  const auto [t, z] = record_height(sim, s.block, 20 * 400);
+  const double d = 2000.0 * 9.81 / kn;
+  CHECK(test::measure_decay(t, z).frequency_hz == test::approx(f).epsilon(0.005));
+  CHECK(*std::min_element(z.begin(), z.end()) == test::approx(-2 * d).epsilon(0.005));
+}
+
+namespace {
+
+/// A stack of four boxes of very different sizes and masses (1152 kg down to 0.13 kg, own limits 1.3e-4 to 1.8e-3 s)
+/// on a fixed base, off centre so that the joints shear and the blocks tilt; elastic joints, no re-detection.
+struct Stack {
+  model::Model model;
+  std::vector<std::size_t> blocks;
+};
+
+Stack box_stack() {
+  Stack s;
+  s.model.add_block(geometry::make_box(Vec3(-1, -1, -0.5), Vec3(1, 1, 0)), 2000, "base", 0, model::Motion::fixed);
+  struct Box {
+    double x, width, height;  // m
+  };
+  double z = 0;
+  for (const Box& b : {Box{0.0, 1.2, 0.4}, Box{0.05, 0.1, 0.08}, Box{0.08, 0.5, 0.3}, Box{0.06, 0.04, 0.04}}) {
+    s.blocks.push_back(s.model.add_block(
+        geometry::make_box(Vec3(b.x - 0.5 * b.width, -0.5 * b.width, z), Vec3(b.x + 0.5 * b.width, 0.5 * b.width, z + b.height)),
+        2000, "box " + std::to_string(s.blocks.size()), 1));
+    z += b.height;
+  }
+  return s;
+}
+
+model::ContactSettings no_redetection() {
+  model::ContactSettings c;
+  c.tolerance = 0.01;
+  return c;
+}
+
+const auto soft_joint = [](int, int) { return contact::Elastic::Parameters(1e9, 4e8); };
+
+/// The median of the free blocks' own limits default_safety_factor 2 / max(sqrt(k / m), sqrt(k r^2 / I_min)) (s).
+template <class Sim>
+double median_own_limit(const Sim& sim) {
+  const auto& b = sim.model().bodies;
+  std::vector<double> kt, kr, kn, limits;
+  sim.stiffnesses(kt, kr, kn);
+  for (std::size_t i = 0; i < b.size(); ++i)
+    if (b.motion[i] == model::Motion::free && kt[i] > 0)
+      limits.push_back(Sim::default_safety_factor * 2.0 /
+                       std::max(std::sqrt(kt[i] / b.mass[i]), std::sqrt(kr[i] / b.principal_inertia[i].minCoeff())));
+  std::sort(limits.begin(), limits.end());
+  return limits[limits.size() / 2];
+}
+
+}  // namespace
+
+TEST_CASE("static mass scaling: restore_real_masses() gives back the real masses and inertias exactly") {
+  auto s = box_stack();
+  ElasticSettle sim(s.model, damping::Local{}, soft_joint, no_redetection());
+  const auto mass = s.model.bodies.mass;
+  const auto inertia = s.model.bodies.principal_inertia;
+  const double dt_real = sim.timestep();
+  const double target = median_own_limit(sim);
+  REQUIRE(target > dt_real);
+  const auto r = sim.scale_masses_for_statics(target);
+  CHECK(sim.static_masses());
+  CHECK(sim.timestep() == target);
+  CHECK(r.scaled_blocks == 4);
+  CHECK(r.min_density_scaling_factor < 0.1);  // the big blocks lighter
+  CHECK(r.max_density_scaling_factor > 5);    // the small ones heavier
+  // Every free block now has the target as its own limit, translation and rotation alike.
+  std::vector<double> kt, kr, kn;
+  sim.stiffnesses(kt, kr, kn);
+  const double omega = 2 * ElasticSettle::default_safety_factor / target;
+  for (std::size_t i : s.blocks) {
+    CHECK(std::sqrt(kt[i] / s.model.bodies.mass[i]) == test::approx(omega).epsilon(1e-8));
+    CHECK(std::sqrt(kr[i] / s.model.bodies.principal_inertia[i].minCoeff()) == test::approx(omega).epsilon(1e-8));
+  }
+  CHECK(r.dt_critical == test::approx(target / ElasticSettle::default_safety_factor).epsilon(1e-8));
+  for (int i = 0; i < 200; ++i) sim.step();
+  sim.restore_real_masses();
+  CHECK_FALSE(sim.static_masses());
+  for (std::size_t i = 0; i < mass.size(); ++i) {
+    CHECK(s.model.bodies.mass[i] == mass[i]);
+    CHECK(s.model.bodies.principal_inertia[i] == inertia[i]);
+  }
+  CHECK(sim.timestep() == sim.default_timestep());
+  CHECK(sim.timestep() == test::approx(dt_real).epsilon(0.01));  // the blocks moved a little since construction
+  // A dynamic simulation continued from it: real masses, the rigid kernel, the real masses' timestep.
+  Simulation<damping::None, contact::Elastic> dynamic(sim, damping::None{});
+  CHECK_FALSE(dynamic.mixed());
+  CHECK(dynamic.timestep() == dynamic.default_timestep());
+  for (std::size_t i = 0; i < mass.size(); ++i) CHECK(s.model.bodies.mass[i] == mass[i]);
+}
+
+TEST_CASE("static mass scaling: a simulation with static masses is not continued before its real masses are back") {
+  auto s = test::block_on_base(0.2, 0.2, 0.2);
+  ElasticSettle sim(s.model, damping::Local{}, stiff_joint);
+  sim.scale_masses_for_statics(2 * sim.timestep());
+  CHECK_THROWS_WITH_AS((Simulation<damping::None, contact::Elastic>(sim, damping::None{})),
+                       doctest::Contains("restore_real_masses"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(sim.scale_masses_for_statics(0), doctest::Contains("static mass scaling: the target timestep must be > 0 s"),
+                       InvalidArgument);
+  sim.restore_real_masses();
+  CHECK_NOTHROW((Simulation<damping::None, contact::Elastic>(sim, damping::None{})));
+}
+
+TEST_CASE("static mass scaling: a stack of very different boxes settles in far fewer steps, to the same equilibrium") {
+  // Reference: the unscaled settle of the same stack (statics do not depend on the masses; the weights stay real).
+  // Unbalanced-force ratio 1e-5: 5050 steps unscaled, 140 with static mass scaling (all blocks at one frequency;
+  // the count does not depend on the target, which only scales dt^2 / m). Positions compared at 1e-9, where the
+  // runs differ only by the path dependence of the incremental shear springs of tilting blocks (~1e-4 of the
+  // largest displacement).
+  struct Settled {
+    long long steps = 0;
+    std::vector<Vec3> position;
+    std::vector<Quaternion> orientation;
+  };
+  const auto settle = [](bool scaled) {
+    auto s = box_stack();
+    ElasticSettle sim(s.model, damping::Local{}, soft_joint, no_redetection());
+    if (scaled) sim.scale_masses_for_statics(median_own_limit(sim));
+    Settled r;
+    CHECK(sim.solve_to_equilibrium(1e-5, 100000));
+    r.steps = sim.steps();
+    CHECK(sim.solve_to_equilibrium(1e-9, 100000));
+    r.position = s.model.bodies.position;
+    r.orientation = s.model.bodies.orientation;
+    return r;
+  };
+  const auto start = box_stack().model;
+  const auto unscaled = settle(false);
+  const auto scaled = settle(true);
+  MESSAGE("settling the stack to 1e-5: " << unscaled.steps << " steps unscaled, " << scaled.steps << " with static mass scaling");
+  CHECK(10 * scaled.steps < unscaled.steps);
+  double largest = 0;
+  for (std::size_t i = 0; i < unscaled.position.size(); ++i)
+    largest = std::max(largest, (unscaled.position[i] - start.bodies.position[i]).norm());
+  CHECK(largest > 1e-3);  // the stack leans
+  for (std::size_t i = 0; i < unscaled.position.size(); ++i) {
+    CAPTURE(i);
+    CHECK((scaled.position[i] - unscaled.position[i]).norm() <= 1e-3 * largest);
+    CHECK(scaled.orientation[i].angularDistance(unscaled.orientation[i]) <= 1e-3 * 4e-3);  // of a tilt of 3.6e-3 rad
+  }
+}
+
+TEST_CASE("static mass scaling: after restore_real_masses() a dynamic continuation vibrates at the real frequency") {
+  // Reference: SDOF f = sqrt(k_n A / m_real) / 2 pi = 20 Hz (the settle ran with 9 times the mass).
+  auto s = test::block_on_base(1, 1, 1);
+  s.model.bodies.fixity[s.block] = vertical_only;
+  const double f = 20.0;
+  const double kn = 2000.0 * std::pow(two_pi * f, 2);
+  const auto joint = [&](int, int) { return contact::Elastic::Parameters(kn, kn); };
+  ElasticSettle settle(s.model, damping::Local{}, joint);
+  settle.scale_masses_for_statics(3 * settle.timestep());
+  CHECK(s.model.bodies.mass[s.block] == test::approx(9 * 2000.0).epsilon(1e-6));
+  CHECK(settle.solve_to_equilibrium(1e-9, 100000));
+  settle.restore_real_masses();
+  Simulation<damping::None, contact::Elastic> sim(settle, damping::None{});
+  CHECK(sim.timestep() == sim.default_timestep());
+  sim.set_timestep(1.0 / (400 * f));
+  s.model.bodies.velocity[s.block] = Vec3(0, 0, 1e-4);
+  const auto [t, z] = record_height(sim, s.block, 20 * 400);
+  CHECK(test::measure_decay(t, z).frequency_hz == test::approx(f).epsilon(0.005));
 }

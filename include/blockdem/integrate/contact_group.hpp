@@ -22,6 +22,7 @@
 #include "blockdem/core/lanes.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
+#include "blockdem/io/checkpoint.hpp"
 
 namespace blockdem {
 
@@ -139,6 +140,35 @@ struct ContactGroup {
 
   std::size_t contacts() const { return body_a.size(); }
   std::size_t size() const { return area.size(); }  // contact points
+
+  /// Every array, for checkpoints (io/checkpoint.hpp), as they are: the gather lists too, and the fields in their
+  /// force form (complete() is not called again: it would take the forces for elongations).
+  void save_state(io::CheckpointWriter& out) const { visit_state(*this, out); }
+  void load_state(io::CheckpointReader& in) { visit_state(*this, in); }
+  template <class Self, class Archive>
+  static void visit_state(Self& g, Archive& ar) {
+    ar("contact property sets", g.properties);
+    ar("contact blocks A", g.body_a);
+    ar("contact blocks B", g.body_b);
+    ar("contact property indices", g.property);
+    ar("contact origins", g.origin_a);
+    ar("contact normals", g.normal_a);
+    ar("contact tangents", g.tangent_a);
+    ar("contacts' first CPs", g.first_point);
+    ar("contact forces", g.force);
+    ar("contact moments", g.moment);
+    ar("contact fields", g.field);
+    ar("contact field forms", g.field_form);
+    ar("CP plane coordinates 1", g.s1);
+    ar("CP plane coordinates 2", g.s2);
+    ar("CP areas", g.area);
+    ar("CP histories", g.history);
+    ar("CP spring states", g.spring_state);
+    ar("CP slip dissipation", g.slip_dissipation);
+    ar("CP viscous dissipation", g.viscous_dissipation);
+    ar("gather list heads", g.first);
+    ar("gather list entries", g.entry);
+  }
 
   void clear() { *this = ContactGroup{}; }
 

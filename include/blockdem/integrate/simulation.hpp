@@ -30,6 +30,7 @@
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
 #include "blockdem/integrate/contact_group.hpp"
+#include "blockdem/io/checkpoint.hpp"
 #include "blockdem/kinematics/deformable.hpp"
 #include "blockdem/model/contact_detection.hpp"
 #include "blockdem/model/model.hpp"
@@ -51,17 +52,20 @@ struct EnergyReport {
 enum class TimestepCheck { checked, unchecked };
 
 /// What partial density scaling did (paper Sect. 3.2: only nodes and rigid blocks whose own limit is below the
-/// target are made heavier; dsf = m_scaled / m_real per node).
+/// target are made heavier; dsf = m_scaled / m_real per node), or static mass scaling (every node and block set to
+/// the mass of the target: some lighter, so added_mass may be negative).
 struct DensityScaling {
   double target_dt = 0;              // s, the timestep asked for (the one the simulation now runs with)
-  double dt_critical_unscaled = 0;   // s, critical timestep before scaling
+  double dt_critical_unscaled = 0;   // s, critical timestep before this scaling
   double dt_critical = 0;            // s, critical timestep after scaling
   double dt = 0;                     // s, the timestep set
   double real_mass = 0;              // kg, free nodes and free rigid blocks before scaling
-  double added_mass = 0;             // kg
+  double added_mass = 0;             // kg, scaled minus real (negative if static scaling made the model lighter)
   double mass_increase_percent = 0;  // 100 added / real
-  std::size_t scaled_nodes = 0, scaled_blocks = 0;
+  std::size_t scaled_nodes = 0, scaled_blocks = 0;  // whose mass (blocks: or inertia) this scaling changed
+  // m_scaled / m_real over the free nodes and free rigid blocks (blocks: also I_min,scaled / I_min,real)
   double max_density_scaling_factor = 1;
+  double min_density_scaling_factor = 1;
 };
 
 template <damping::DampingPolicy Damping, contact::ContactLaw... Laws>
@@ -97,10 +101,14 @@ class Simulation {
   template <damping::DampingPolicy Other>
   Simulation(Simulation<Other, Laws...>& other, Damping damping)
       : model_(other.model_), damping_(damping), properties_(other.properties_), settings_(other.settings_) {
+    if (other.static_masses_)
+      throw InvalidArgument("simulation: the simulation to continue from runs with static mass scaling; call "
+                            "restore_real_masses() on it first");
     other.synchronize();
-    resize_block_arrays();
+    resize_block_arrays();  // inverse masses from the model's present masses
     copy_groups(other, std::index_sequence_for<Laws...>{});
-    mixed_ = other.mixed_;
+    // The mixed step only for what needs it: not for a rigid-only model whose real masses were put back.
+    mixed_ = other.mixed_ && (!model_->deformable.empty() || other.scaled_rigid_blocks());
     if (mixed_) deformable_.take_over(other.deformable_, *model_);
     time_ = other.time_;
     set_timestep(std::min(other.dt_, default_timestep()));
@@ -172,65 +180,46 @@ class Simulation {
   /// Call before stepping (the energy reference is taken at the first step). Throws InvalidArgument if the target is
   /// not positive and finite.
   DensityScaling scale_density_to(double target_dt, double safety_factor = default_safety_factor) {
-    if (!(target_dt > 0) || !std::isfinite(target_dt))
-      throw InvalidArgument("density scaling: the target timestep must be > 0 s and finite, got " + std::to_string(target_dt));
-    if (!(safety_factor > 0 && safety_factor <= 1))
-      throw InvalidArgument("density scaling: the safety factor must be in (0, 1], got " + std::to_string(safety_factor));
-    auto& b = model_->bodies;
-    auto& nd = model_->deformable.nodes;
-    if (!mixed_) {  // the weight correction of scaled rigid blocks runs in the mixed path
-      mixed_ = true;
-      deformable_.setup(*model_);
-    }
-    DensityScaling r;
-    r.target_dt = target_dt;
-    r.dt_critical_unscaled = critical_timestep();
-    std::vector<double> kt, kr, kn;
-    stiffnesses(kt, kr, kn);
-    // omega_t with safety 2 f(omega_t) / omega_t = target (f: eq. 11 or eq. 20), by bisection in log omega.
-    auto limit = [&](double omega) { return safety_factor * 2.0 / omega * damping_.timestep_factor(omega); };
-    double lo = 1e-12, hi = 1e15;
-    for (int it = 0; it < 200; ++it) {
-      const double mid = std::sqrt(lo * hi);
-      (limit(mid) > target_dt ? lo : hi) = mid;
-    }
-    const double omega2 = lo * lo;
-    const double margin = 1.0 + 1e-9;
-    for (std::size_t i = 0; i < kn.size(); ++i) {
-      if ((nd.fixity[i] & 7) == 7) continue;
-      const double required = kn[i] / omega2 * margin;
-      if (nd.mass[i] < required) {
-        nd.mass[i] = required;
-        deformable_.node_inverse_mass[i] = 1.0 / required;
-        ++r.scaled_nodes;
-      }
-      r.real_mass += nd.real_mass[i];
-      r.added_mass += nd.mass[i] - nd.real_mass[i];
-      r.max_density_scaling_factor = std::max(r.max_density_scaling_factor, nd.density_scaling_factor(i));
-    }
-    for (std::size_t i = 0; i < b.size(); ++i) {
-      if (b.motion[i] != model::Motion::free || model_->deformable.is_deformable(i)) continue;
-      double factor = 1.0;
-      if ((b.fixity[i] & 7) != 7) factor = std::max(factor, kt[i] / (omega2 * b.mass[i]) * margin);
-      if ((b.fixity[i] & model::Fixity::all_rotations) != model::Fixity::all_rotations)
-        factor = std::max(factor, kr[i] / (omega2 * b.principal_inertia[i].minCoeff()) * margin);
-      if (factor > 1.0) {
-        b.mass[i] *= factor;
-        b.principal_inertia[i] *= factor;
-        inverse_mass_[i] = 1.0 / b.mass[i];
-        inverse_inertia_[i] = b.principal_inertia[i].cwiseInverse();
-        ++r.scaled_blocks;
-      }
-      r.real_mass += deformable_.rigid_real_mass[i];
-      r.added_mass += b.mass[i] - deformable_.rigid_real_mass[i];
-      r.max_density_scaling_factor = std::max(r.max_density_scaling_factor, b.mass[i] / deformable_.rigid_real_mass[i]);
-    }
-    r.mass_increase_percent = r.real_mass > 0 ? 100.0 * r.added_mass / r.real_mass : 0.0;
-    r.dt_critical = critical_timestep();
-    set_timestep(target_dt);
-    r.dt = dt_;
+    return scale_masses(target_dt, safety_factor, MassRule::raise_only);
+  }
+
+  /// Static mass scaling (3DEC's for static solutions; statics do not depend on the masses): every free node gets
+  /// exactly the mass whose own limit 2 safety f / sqrt(k / m) is the target timestep, raised or lowered, and every
+  /// free rigid block the mass of its translational limit and the inertia (its principal moments by one factor, from
+  /// the real ones) of its rotational limit: all degrees of freedom with a stiffness share one frequency, and the
+  /// local damping (damping::Local) brings them to rest together. Those without contact stiffness (or fixed) keep
+  /// their real masses. Weights stay those of the real masses. Sets the timestep to the target and reports what was
+  /// changed (added_mass may be negative). For settling only: call restore_real_masses() before continuing with a
+  /// dynamic simulation (the continuation constructor refuses a simulation with static masses). Throws
+  /// InvalidArgument if the target is not positive and finite.
+  DensityScaling scale_masses_for_statics(double target_dt, double safety_factor = default_safety_factor) {
+    const DensityScaling r = scale_masses(target_dt, safety_factor, MassRule::exact);
+    static_masses_ = true;
     return r;
   }
+
+  /// Gives every block and node back its real mass and inertia (bitwise those before any scaling) and updates the
+  /// inverse masses; then sets the timestep to default_timestep() for the real masses (the one the simulation would
+  /// be constructed with now; a smaller one set before scaling is not remembered). Undoes scale_density_to() and
+  /// scale_masses_for_statics(). The kinetic energy is that of the real masses from the next step on: call it at
+  /// rest (after settling), where the energy balance does not notice. The mixed step stays on (its weight correction
+  /// is then zero); a simulation continued from this one runs the rigid kernel if the model is rigid-only.
+  void restore_real_masses() {
+    auto& b = model_->bodies;
+    auto& nd = model_->deformable.nodes;
+    if (mixed_) {  // blocks are scaled only in the mixed step, which keeps their real masses
+      b.mass = deformable_.rigid_real_mass;
+      b.principal_inertia = deformable_.rigid_real_inertia;
+      nd.mass = nd.real_mass;
+      for (std::size_t i = 0; i < nd.size(); ++i) deformable_.node_inverse_mass[i] = 1.0 / nd.mass[i];
+    }
+    set_inverse_masses();
+    static_masses_ = false;
+    set_timestep(default_timestep());
+  }
+
+  /// Whether the masses are those of scale_masses_for_statics() (not yet restored).
+  bool static_masses() const { return static_masses_; }
 
   /// Density scaling factor m_scaled / m_real of every node (the VTK field `density_scaling_factor`).
   std::vector<double> density_scaling_factors() const {
@@ -392,14 +381,14 @@ class Simulation {
     return e;
   }
 
-  /// Sum of |unbalanced force| over sum of |applied force| (gravity and contact forces) of the free blocks.
+  /// Sum of |unbalanced force| over sum of |applied force| (the real weights) of the free blocks and nodes.
   double unbalanced_force_ratio() const {
     const auto& b = model_->bodies;
     double unbalanced = 0, applied = 0;
     for (std::size_t i = 0; i < b.size(); ++i) {
       if (b.motion[i] != model::Motion::free || model_->deformable.is_deformable(i)) continue;
       unbalanced += b.force[i].norm();
-      applied += b.mass[i] * model_->gravity.norm();
+      applied += (mixed_ ? deformable_.rigid_real_mass[i] : b.mass[i]) * model_->gravity.norm();  // not the scaled one
     }
     const auto& nd = model_->deformable.nodes;
     for (std::size_t i = 0; i < nd.size(); ++i) {
@@ -433,7 +422,55 @@ class Simulation {
     pending_increment_ = false;
   }
 
+  // ---- checkpoints ----
+
+  /// Writes the complete state (the model's too) for io::save_checkpoint. A simulation constructed the same way
+  /// (same model description, policy, property function, settings) that calls load_state() continues bitwise as
+  /// this one does; the load may be followed by nothing else (no scale_density_to(), no set_timestep()): masses,
+  /// timestep and the damping policy's constants are in the state. load_state throws InvalidArgument (naming the
+  /// file and the field) on a checkpoint of another layout or model size; the simulation is then unusable.
+  void save_state(io::CheckpointWriter& out) const { visit_state(*this, out); }
+  void load_state(io::CheckpointReader& in) { visit_state(*this, in); }
+
  private:
+  /// The one list of the saved fields, for both directions. Not saved: model_ (the caller's model, whose state is
+  /// saved in its place); properties_ and settings_ (the description: the constructor's arguments);
+  /// chosen_properties_ (a memo of properties_, filled again identically); radius_ (from the shapes);
+  /// taken_over_ and old_contacts_ (scratch of a detection). The damping policy is saved whole: its parameters
+  /// and the constants of prepare(dt).
+  template <class Self, class Archive>
+  static void visit_state(Self& s, Archive& ar) {
+    ar.check("the simulation type (damping policy, joint laws)", io::type_name<Simulation>());
+    ar("model", *s.model_);
+    static_assert(io::plain_checkpoint_value<Damping>, "a checkpoint saves the damping policy as its bytes");
+    ar("damping policy", s.damping_);
+    ar("mixed step", s.mixed_);
+    ar("deformable state", s.deformable_);
+    std::apply([&](auto&... g) { (ar("contact group", g), ...); }, s.groups_);
+    ar("timestep", s.dt_);
+    ar("time", s.time_);
+    ar("steps", s.steps_);
+    ar("steps since the last detection check", s.steps_since_check_);
+    ar("detections", s.detections_);
+    ar("pending increment", s.pending_increment_);
+    ar("moved since the last detection", s.moved_since_detection_);
+    ar("static masses", s.static_masses_);
+    ar.same_size("block kinetic energies", s.kinetic_);
+    ar.same_size("block gravity work", s.gravity_work_);
+    ar.same_size("block base work", s.base_work_);
+    ar.same_size("block viscous work", s.viscous_);
+    ar.same_size("block inverse masses", s.inverse_mass_);
+    ar.same_size("block inverse inertias", s.inverse_inertia_);
+    ar.same_size("block positions at the last detection", s.detected_position_);
+    ar.same_size("block orientations at the last detection", s.detected_orientation_);
+    ar("base displacement", s.base_displacement_);
+    ar("base displacement at the last detection", s.detected_base_displacement_);
+    ar("energy reference", s.energy0_);
+    ar("energy reference pending", s.energy_reference_pending_);
+    ar("retired slip", s.retired_slip_);
+    ar("retired viscous work", s.retired_viscous_);
+  }
+
   template <damping::DampingPolicy, contact::ContactLaw...>
   friend class Simulation;
 
@@ -460,12 +497,7 @@ class Simulation {
     viscous_.assign(n, 0.0);
     detected_position_ = model_->bodies.position;
     detected_orientation_ = model_->bodies.orientation;
-    inverse_mass_.assign(n, 0.0);
-    inverse_inertia_.assign(n, Vec3::Zero());
-    for (std::size_t i = 0; i < n; ++i) {
-      inverse_mass_[i] = 1.0 / model_->bodies.mass[i];
-      inverse_inertia_[i] = model_->bodies.principal_inertia[i].cwiseInverse();
-    }
+    set_inverse_masses();
     radius_.assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i)
       for (const auto& v : model_->bodies.shape[i].vertices) radius_[i] = std::max(radius_[i], v.norm());
@@ -478,6 +510,113 @@ class Simulation {
                                         .dot(b.principal_inertia[i])
                         : 0.0;
     }
+  }
+
+  void set_inverse_masses() {
+    const auto& b = model_->bodies;
+    inverse_mass_.assign(b.size(), 0.0);
+    inverse_inertia_.assign(b.size(), Vec3::Zero());
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      inverse_mass_[i] = 1.0 / b.mass[i];
+      inverse_inertia_[i] = b.principal_inertia[i].cwiseInverse();
+    }
+  }
+
+  /// Whether a rigid block's mass or inertia differs from its real one (only the mixed step keeps the real ones).
+  bool scaled_rigid_blocks() const {
+    if (!mixed_) return false;
+    const auto& b = model_->bodies;
+    for (std::size_t i = 0; i < b.size(); ++i)
+      if (b.mass[i] != deformable_.rigid_real_mass[i] || b.principal_inertia[i] != deformable_.rigid_real_inertia[i]) return true;
+    return false;
+  }
+
+  /// How scale_masses() sets masses: raise only those whose own limit is below the target (partial density
+  /// scaling), or set every one to the mass of the target (static mass scaling).
+  enum class MassRule { raise_only, exact };
+
+  /// The mass scaling of scale_density_to() and scale_masses_for_statics(), by `rule`.
+  DensityScaling scale_masses(double target_dt, double safety_factor, MassRule rule) {
+    const std::string what = rule == MassRule::raise_only ? "density scaling" : "static mass scaling";
+    if (!(target_dt > 0) || !std::isfinite(target_dt))
+      throw InvalidArgument(what + ": the target timestep must be > 0 s and finite, got " + std::to_string(target_dt));
+    if (!(safety_factor > 0 && safety_factor <= 1))
+      throw InvalidArgument(what + ": the safety factor must be in (0, 1], got " + std::to_string(safety_factor));
+    auto& b = model_->bodies;
+    auto& nd = model_->deformable.nodes;
+    if (!mixed_) {  // the weight correction of scaled rigid blocks runs in the mixed path, which keeps the real masses
+      mixed_ = true;
+      deformable_.setup(*model_);
+    }
+    DensityScaling r;
+    r.target_dt = target_dt;
+    r.dt_critical_unscaled = critical_timestep();
+    std::vector<double> kt, kr, kn;
+    stiffnesses(kt, kr, kn);
+    // omega_t with safety 2 f(omega_t) / omega_t = target (f: eq. 11 or eq. 20), by bisection in log omega.
+    auto limit = [&](double omega) { return safety_factor * 2.0 / omega * damping_.timestep_factor(omega); };
+    double lo = 1e-12, hi = 1e15;
+    for (int it = 0; it < 200; ++it) {
+      const double mid = std::sqrt(lo * hi);
+      (limit(mid) > target_dt ? lo : hi) = mid;
+    }
+    const double omega2 = lo * lo;
+    const double margin = 1.0 + 1e-9;
+    const auto factor_range = [&](double factor) {
+      r.max_density_scaling_factor = std::max(r.max_density_scaling_factor, factor);
+      r.min_density_scaling_factor = std::min(r.min_density_scaling_factor, factor);
+    };
+    for (std::size_t i = 0; i < kn.size(); ++i) {
+      if ((nd.fixity[i] & 7) == 7) continue;
+      const double required = kn[i] / omega2 * margin;
+      const double mass = rule == MassRule::raise_only ? std::max(nd.mass[i], required)
+                                                       : (kn[i] > 0 ? required : nd.real_mass[i]);
+      if (mass != nd.mass[i]) {
+        nd.mass[i] = mass;
+        deformable_.node_inverse_mass[i] = 1.0 / mass;
+        ++r.scaled_nodes;
+      }
+      r.real_mass += nd.real_mass[i];
+      r.added_mass += nd.mass[i] - nd.real_mass[i];
+      factor_range(nd.density_scaling_factor(i));
+    }
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      if (b.motion[i] != model::Motion::free || model_->deformable.is_deformable(i)) continue;
+      const bool translates = (b.fixity[i] & 7) != 7;
+      const bool turns = (b.fixity[i] & model::Fixity::all_rotations) != model::Fixity::all_rotations;
+      const double real_mass = deformable_.rigid_real_mass[i];
+      const Vec3& real_inertia = deformable_.rigid_real_inertia[i];
+      double mass = b.mass[i];
+      Vec3 inertia = b.principal_inertia[i];
+      if (rule == MassRule::raise_only) {
+        double factor = 1.0;
+        if (translates) factor = std::max(factor, kt[i] / (omega2 * mass) * margin);
+        if (turns) factor = std::max(factor, kr[i] / (omega2 * inertia.minCoeff()) * margin);
+        if (factor > 1.0) {
+          mass *= factor;
+          inertia *= factor;
+        }
+      } else {
+        mass = translates && kt[i] > 0 ? kt[i] / omega2 * margin : real_mass;
+        inertia = turns && kr[i] > 0 ? Vec3(real_inertia * (kr[i] / omega2 * margin / real_inertia.minCoeff())) : real_inertia;
+      }
+      if (mass != b.mass[i] || inertia != b.principal_inertia[i]) {
+        b.mass[i] = mass;
+        b.principal_inertia[i] = inertia;
+        inverse_mass_[i] = 1.0 / mass;
+        inverse_inertia_[i] = inertia.cwiseInverse();
+        ++r.scaled_blocks;
+      }
+      r.real_mass += real_mass;
+      r.added_mass += mass - real_mass;
+      factor_range(mass / real_mass);
+      factor_range(inertia.minCoeff() / real_inertia.minCoeff());
+    }
+    r.mass_increase_percent = r.real_mass > 0 ? 100.0 * r.added_mass / r.real_mass : 0.0;
+    r.dt_critical = critical_timestep();
+    set_timestep(target_dt);
+    r.dt = dt_;
+    return r;
   }
 
   template <contact::ContactLaw L>
@@ -1455,6 +1594,7 @@ class Simulation {
   int detections_ = 0;
   bool pending_increment_ = false;
   bool moved_since_detection_ = false;
+  bool static_masses_ = false;  // scale_masses_for_statics() until restore_real_masses()
   std::vector<double> kinetic_, gravity_work_, base_work_, viscous_, radius_;
   std::vector<double> inverse_mass_;     // 1/kg, of each block (set with the block arrays)
   std::vector<Vec3> inverse_inertia_;    // 1/(kg m^2), principal

@@ -29,6 +29,7 @@
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
 #include "blockdem/integrate/contact_group.hpp"
+#include "blockdem/io/checkpoint.hpp"
 #include "blockdem/kinematics/node_contact_group.hpp"
 #include "blockdem/model/contact_detection.hpp"
 #include "blockdem/model/model.hpp"
@@ -89,7 +90,10 @@ class DeformableState {
     std::apply([&](const auto&... g) { (f(g), ...); }, groups);
   }
 
-  /// Sizes the arrays and builds the static gather lists (elements and trusses to nodes).
+  /// Sizes the arrays and builds the gather lists: the static ones (elements and trusses to nodes) and those of the
+  /// node contacts and rigid truss ends (for the groups as they are: empty before the first assign()), so that the
+  /// state can step right after setup, also when no assign() follows (a rigid-only model switched to the mixed step
+  /// by density scaling).
   void setup(const model::Model& m) {
     const auto& nd = m.deformable.nodes;
     const auto& te = m.deformable.tetrahedra;
@@ -131,6 +135,7 @@ class DeformableState {
       for (std::uint32_t s = 0; s < 2; ++s)
         if (trusses[t].end[s].node >= 0) truss_entry[next[static_cast<std::size_t>(trusses[t].end[s].node)]++] = static_cast<std::uint32_t>(2 * t + s);
     detected_node_position = nd.position;
+    build_contact_lists(m);
   }
 
   /// The branch stresses of element t (tensor form), gathered from its tile: Damping::ElementState, Pa.
@@ -142,7 +147,8 @@ class DeformableState {
     return s;
   }
 
-  /// Copies the contact histories (not the damping state) from the state of another damping policy.
+  /// Copies the contact histories (not the damping state) and the real rigid masses from the state of another
+  /// damping policy. The inverse node masses come from the model's present masses (setup), not from `other`.
   template <class Other>
   void take_over(const Other& other, const model::Model& m) {
     rigid_real_mass = other.rigid_real_mass;
@@ -387,7 +393,45 @@ class DeformableState {
     return n;
   }
 
+  /// Every array, for checkpoints (io/checkpoint.hpp), the gather lists too (those of the elements and trusses
+  /// could be rebuilt from the model, those of the node contacts from the groups: loaded, nothing has to be).
+  /// Not saved: material_moduli, a cache that every element pass fills before use.
+  void save_state(io::CheckpointWriter& out) const { visit_state(*this, out); }
+  void load_state(io::CheckpointReader& in) { visit_state(*this, in); }
+
  private:
+  template <class Self, class Archive>
+  static void visit_state(Self& d, Archive& ar) {
+    std::apply([&](auto&... g) { (ar("node contact group", g), ...); }, d.groups);
+    ar("element damping states", d.element_state);
+    ar("element forces", d.element_force);
+    ar("element viscous work", d.element_viscous);
+    ar("truss forces", d.truss_force);
+    ar("node inverse masses", d.node_inverse_mass);
+    ar("node kinetic energies", d.node_kinetic);
+    ar("node gravity work", d.node_gravity_work);
+    ar("node viscous work", d.node_viscous);
+    ar("forces on rigid blocks", d.extra_force);
+    ar("moments on rigid blocks", d.extra_moment);
+    ar("real rigid block masses", d.rigid_real_mass);
+    ar("real rigid block inertias", d.rigid_real_inertia);
+    ar("weight correction work", d.extra_work);
+    ar("retired node contact slip", d.retired_slip);
+    ar("retired node contact viscous work", d.retired_viscous);
+    ar("node positions at the last detection", d.detected_node_position);
+    ar("node contact gather list heads", d.node_first);
+    ar("node contact gather list entries", d.node_entry);
+    ar("node contact gather list coefficients", d.node_coefficient);
+    ar("rigid block node contact gather list heads", d.rigid_first);
+    ar("rigid block node contact gather list entries", d.rigid_entry);
+    ar("element gather list heads", d.element_first);
+    ar("element gather list entries", d.element_entry);
+    ar("truss gather list heads", d.truss_first);
+    ar("truss gather list entries", d.truss_entry);
+    ar("rigid block truss gather list heads", d.rigid_truss_first);
+    ar("rigid block truss gather list entries", d.rigid_truss_entry);
+  }
+
   template <damping::DampingPolicy, contact::ContactLaw...>
   friend class DeformableState;
 

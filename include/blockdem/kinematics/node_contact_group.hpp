@@ -13,6 +13,7 @@
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
+#include "blockdem/io/checkpoint.hpp"
 #include "blockdem/kinematics/concepts.hpp"
 
 namespace blockdem::kinematics {
@@ -48,6 +49,31 @@ struct NodeContactGroup {
   std::vector<double> viscous_dissipation; // J
 
   std::size_t size() const { return area.size(); }
+
+  /// Every array, for checkpoints (io/checkpoint.hpp).
+  void save_state(io::CheckpointWriter& out) const { visit_state(*this, out); }
+  void load_state(io::CheckpointReader& in) { visit_state(*this, in); }
+  template <class Self, class Archive>
+  static void visit_state(Self& g, Archive& ar) {
+    ar("node contact property sets", g.properties);
+    ar("node contact nodes", g.node);
+    ar("node contact node blocks", g.node_block);
+    ar("node contact face blocks", g.face_block);
+    ar("node contact property indices", g.property);
+    ar("node contact areas", g.area);
+    ar("node contact face points", g.point_local);
+    ar("node contact face normals", g.normal_local);
+    ar("node contact face tangents", g.tangent_local);
+    ar("node contact face triangles", g.triangle);
+    ar("node contact face weights", g.weight);
+    ar("node contact histories", g.history);
+    ar("node contact spring states", g.spring_state);
+    ar("node contact tractions", g.traction);
+    ar("node contact forces", g.force);
+    ar("node contact moments", g.moment);
+    ar("node contact slip dissipation", g.slip_dissipation);
+    ar("node contact viscous dissipation", g.viscous_dissipation);
+  }
 
   void add(std::uint32_t n, std::uint32_t nb, std::uint32_t fb, std::uint16_t p, double a, const History& h,
            const SpringState& s, double slip, double viscous) {

@@ -12,6 +12,7 @@
 #include "blockdem/geometry/convex_polyhedron.hpp"
 #include "blockdem/geometry/mass_properties.hpp"
 #include "blockdem/geometry/tetrahedral_mesh.hpp"
+#include "blockdem/io/checkpoint.hpp"
 #include "blockdem/model/deformable.hpp"
 
 namespace blockdem::model {
@@ -238,7 +239,42 @@ class Model {
   /// Velocity of base blocks at time t (s), m/s; zero unless set.
   std::function<Vec3(double)> base_velocity = [](double) { return Vec3::Zero(); };
 
+  /// The state a simulation changes (or a user may change between steps), for checkpoints (io/checkpoint.hpp):
+  /// load_state() into a model built the same way gives it back bitwise. Throws InvalidArgument if the counts of
+  /// blocks, nodes or tetrahedra differ.
+  void save_state(io::CheckpointWriter& out) const { visit_state(*this, out); }
+  void load_state(io::CheckpointReader& in) { visit_state(*this, in); }
+
  private:
+  /// The one list of the saved fields, for both directions. Not saved, because the model is built again from its
+  /// description before loading: the blocks' names, shapes, joint tags and volumes; the deformable blocks' meshes
+  /// (nodes' real masses and owners, the tetrahedra but their stresses, materials, boundaries, reference positions);
+  /// the trusses; base_velocity (a function of time: the time is in the simulation's state).
+  template <class Self, class Archive>
+  static void visit_state(Self& m, Archive& ar) {
+    auto& b = m.bodies;
+    ar.same_size("block positions", b.position);
+    ar.same_size("block orientations", b.orientation);
+    ar.same_size("block rotations", b.rotation);
+    ar.same_size("block velocities", b.velocity);
+    ar.same_size("block angular velocities", b.angular_velocity);
+    ar.same_size("block masses", b.mass);  // as scaled
+    ar.same_size("block principal inertias", b.principal_inertia);
+    ar.same_size("block forces", b.force);
+    ar.same_size("block moments", b.moment);
+    ar.same_size("block motions", b.motion);
+    ar.same_size("block fixities", b.fixity);
+    auto& nd = m.deformable.nodes;
+    ar.same_size("node positions", nd.position);
+    ar.same_size("node velocities", nd.velocity);
+    ar.same_size("node forces", nd.force);
+    ar.same_size("node masses", nd.mass);  // as scaled
+    ar.same_size("node fixities", nd.fixity);
+    ar.same_size("tetrahedron stresses", m.deformable.tetrahedra.stress);
+    ar.check("the number of trusses", static_cast<std::uint64_t>(m.deformable.trusses.size()));
+    ar("gravity", m.gravity);
+  }
+
   std::vector<double> volume_;
 };
 
