@@ -1,11 +1,12 @@
-// cross_vault: the full-scale brick cross vault of the LNEC shake-table test (paper Sect. 2 and 3.2): builds the
-// blocks of every component, checks the assembly (validity, overlaps, contacts, masses against analytical volumes)
-// and writes it out. The dynamic analysis comes in a later issue; for now --geometry-only is required.
+// cross_vault: the full-scale brick cross vault of the LNEC shake-table test (paper Sect. 2, 3.2, 5).
 //
-//   cross_vault --geometry-only [--vtk vault.vtu] [--contacts-vtk cps.vtu] [--json] [--profile segmental|elliptical] [--span 2.9]
-//               [--rise 1.2] [--thickness 0.12] [--plan 3.5] [...]
+//   cross_vault run [--out DIR] [--record FILE] [--levels 25,50,75] [--damping none|mass|stiffness|rayleigh|maxwell] [...]
+//       settles the vault under gravity and shakes it at each level in turn (the incremental analysis of Sect. 5),
+//       writing histories, damage maps, report.json and the Table 4 of the run into DIR;
+//   cross_vault --geometry-only [--vtk vault.vtu] [--contacts-vtk cps.vtu] [--json] [--profile segmental|elliptical] [...]
+//       builds and checks the blocks of every component (validity, overlaps, contacts, masses) and writes them out.
 //
-// Exit status: 0 on success, 1 if the assembly check fails, 2 on bad input.
+// Exit status: 0 on success, 1 if the assembly check fails or a run is interrupted, 2 on bad input.
 
 #include <chrono>
 #include <cstdio>
@@ -16,6 +17,9 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "blockdem/analysis/error_metrics.hpp"
+#include "blockdem/analysis/vault_study.hpp"
+#include "blockdem/integrate/run.hpp"
 #include "blockdem/io/json.hpp"
 #include "blockdem/io/vtk.hpp"
 #include "blockdem/models/cross_vault.hpp"
@@ -28,6 +32,170 @@ std::string vector_json(const blockdem::Vec3& p) {
   return "[" + JsonObject::number(p.x()) + ", " + JsonObject::number(p.y()) + ", " + JsonObject::number(p.z()) + "]";
 }
 
+/// The options of `cross_vault run` (analysis::VaultStudyOptions).
+struct RunCommand {
+  blockdem::analysis::VaultStudyOptions study;
+  std::string units, truncation = "window", axis = "y";
+  std::vector<double> window{0, 15}, band{1, 40};
+  bool quiet = false, json = false;
+
+  void add_to(CLI::App& app) {
+    using blockdem::analysis::DampingScheme;
+    auto& o = study;
+    o.out_dir = "vault_run";
+    app.add_option("--out", o.out_dir, "output folder (created if missing)")->capture_default_str();
+    app.add_option("--record", o.record_path, "acceleration record (PEER .AT2, ESM ASCII, text); default: the built-in synthetic AQA75 stand-in");
+    app.add_option("--units", units, "units of the record's samples: g, m/s2 or cm/s2 (default: from its header)");
+    app.add_option("--axis", axis, "the table moves along x or y (the vault's longitudinal axis)")->capture_default_str();
+    app.add_option("--record-level", o.record_level, "the share of the original record that the input represents, % (0, 1000]")->capture_default_str();
+    app.add_option("--levels", o.levels, "levels to run one after another, % of the original record, (0, 1000]")
+        ->delimiter(',')->capture_default_str();
+    app.add_option("--truncate", truncation, "cut of the record: window (--window) or wavelet (the pulse support, Sect. 6.1.2)")
+        ->check(CLI::IsMember({"window", "wavelet"}))->capture_default_str();
+    app.add_option("--window", window, "start and end of the window on the record's clock, s")->expected(2)->capture_default_str();
+    app.add_option("--baseline", o.baseline, std::string("baseline correction: ") + blockdem::motion::baseline_grammar)->capture_default_str();
+    app.add_option("--rest", o.rest, "free motion after each level with the table at rest, s [0, 600]")->capture_default_str();
+    app.add_option("--damping", o.damping, "viscous damping of the dynamic run")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, DampingScheme>{{"none", DampingScheme::none},
+                                                                                   {"mass", DampingScheme::mass},
+                                                                                   {"stiffness", DampingScheme::stiffness},
+                                                                                   {"rayleigh", DampingScheme::rayleigh},
+                                                                                   {"maxwell", DampingScheme::maxwell}}))
+        ->capture_default_str();
+    app.add_option("--zeta", o.zeta, "target damping ratio (default: maxwell 0.03, mass 0.04, stiffness and rayleigh 0.03)");
+    app.add_option("--frequency", o.frequency_hz, "mass: centre frequency; stiffness: frequency of --zeta, Hz")->capture_default_str();
+    app.add_option("--band", band, "maxwell: the band of the fit; rayleigh: its two frequencies, Hz")->expected(2)->capture_default_str();
+    app.add_option("--branches", o.branches, "maxwell: number of branches, 1..4")->capture_default_str();
+    app.add_option("--target-dt", o.target_dt, "timestep of the dynamic run by partial density scaling, s (0: the largest whose density scaling adds at most --mass-increase % of the mass)")
+        ->capture_default_str();
+    app.add_option("--mass-increase", o.default_mass_increase_percent, "mass that the automatic timestep may add by density scaling, %")
+        ->capture_default_str();
+    app.add_option("--max-mass-increase", o.max_mass_increase_percent, "refuse a --target-dt that adds more mass than this, %")->capture_default_str();
+    app.add_option("--settle-tolerance", o.settle_tolerance, "unbalanced-force ratio that ends settling")->capture_default_str();
+    app.add_option("--settle-steps", o.settle_max_steps, "most steps of settling")->capture_default_str();
+    app.add_option("--history-dt", o.history_dt, "sampling interval of the histories, s")->capture_default_str();
+    app.add_option("--snapshots-every", o.snapshots_every, "write the blocks every DT s of simulated time (snapshots.pvd for ParaView; 0: none)")
+        ->capture_default_str();
+    app.add_flag("--free-vibration", o.free_vibration,
+                 "first measure the settled vault's first frequency and damping ratio in free decay (into report.json)");
+    app.add_flag("--quiet", quiet, "no progress line");
+    app.add_flag("--json", json, "print report.json at the end");
+  }
+
+  void finish() {
+    using namespace blockdem;
+    auto& o = study;
+    if (!units.empty()) o.read.units = motion::parse_acceleration_unit(units);
+    if (axis != "x" && axis != "y") throw InvalidArgument("--axis must be x or y, got '" + axis + "'");
+    o.axis = axis[0];
+    o.truncation = truncation == "wavelet" ? analysis::Truncation::wavelet : analysis::Truncation::window;
+    o.window_start = window[0];
+    o.window_end = window[1];
+    o.lower_hz = band[0];
+    o.upper_hz = band[1];
+    o.progress = !quiet;
+  }
+};
+
+/// `cross_vault compare`: the Sect. 5 error metrics of a run's histories against measured channels.
+struct CompareCommand {
+  std::string dir, measured, level = "75";
+  bool json = false;
+
+  void add_to(CLI::App& app) {
+    app.add_option("dir", dir, "output folder of a `cross_vault run`")->required();
+    app.add_option("--measured", measured, "measured channels: CSV with a time column and columns named like the history's "
+                                           "(OC1_uy in m, ACC18_ay in m/s^2, ...)")->required();
+    app.add_option("--level", level, "the level whose history_<level>.csv is compared")->capture_default_str();
+    app.add_flag("--json", json, "print JSON");
+  }
+
+  int run() const {
+    using namespace blockdem;
+    const auto simulated = analysis::read_csv_table(dir + "/history_" + level + ".csv");
+    const auto measured_table = analysis::read_csv_table(measured);
+    const auto comparisons = analysis::compare_tables(simulated, measured_table);
+    std::vector<io::JsonObject> channels;
+    if (!json)
+      fmt::print("{:<10} {:>8} {:>12} {:>12} {:>10} {:>9} {:>9} {:>9} {:>9}\n", "channel", "samples", "RMSD num", "RMSD exp",
+                 "eps RMSD%", "NRMSE%", "max err%", "min err%", "RE_max%");
+    for (const auto& c : comparisons) {
+      if (json) {
+        io::JsonObject j;
+        j.add("channel", c.channel).add("samples", static_cast<long long>(c.samples)).add("rmsd_num", c.rmsd_num)
+            .add("rmsd_exp", c.rmsd_exp).add("rmsd_error_percent", c.rmsd_error_percent).add("nrmse_percent", c.nrmse_percent)
+            .add("peak_max_signed_percent", c.peaks.max_signed_percent).add("peak_min_signed_percent", c.peaks.min_signed_percent)
+            .add("absolute_peak_percent", c.peaks.absolute_peak_percent).add("re_max_percent", c.re_max_percent)
+            .add("re_min_percent", c.re_min_percent);
+        channels.push_back(j);
+      } else {
+        fmt::print("{:<10} {:>8} {:>12.4g} {:>12.4g} {:>10.2f} {:>9.2f} {:>+9.2f} {:>+9.2f} {:>9.2f}\n", c.channel, c.samples,
+                   c.rmsd_num, c.rmsd_exp, c.rmsd_error_percent, c.nrmse_percent, c.peaks.max_signed_percent,
+                   c.peaks.min_signed_percent, c.re_max_percent);
+      }
+    }
+    io::JsonObject out;
+    out.add("history", dir + "/history_" + level + ".csv").add("measured", measured).add("channels", channels);
+    for (const char* suffix : {"_ux", "_uy"}) {
+      try {
+        const double e = analysis::mean_rmsd_error_percent(comparisons, suffix);  // eq. 27-28 over OC1, OC2, OC4
+        if (json) out.add(std::string("mean_rmsd_error_percent") + suffix, e);
+        else fmt::print("eq. 27-28 over OC1, OC2, OC4 ({}): {:.2f} %\n", suffix + 1, e);
+      } catch (const InvalidArgument&) {
+        // a direction the measurement does not have
+      }
+    }
+    if (json) fmt::print("{}\n", out.str());
+    return 0;
+  }
+};
+
+int run_study(RunCommand& command) {
+  using namespace blockdem;
+  command.finish();
+  stop_on_interrupt();
+  const auto r = analysis::run_vault_study(command.study);
+  if (command.json) {
+    fmt::print("{}\n", analysis::detail::report_json(r));
+    return r.interrupted ? 1 : 0;
+  }
+  fmt::print("input: {}{} ({}, baseline {}), PGA {:.3f} m/s^2 at {:g} %\n", r.input.name,
+             r.input.synthetic ? " [SYNTHETIC stand-in, not the AQA recording]" : "", r.input.cut, r.input.baseline, r.input.pga,
+             command.study.record_level);
+  fmt::print("model: {} rigid blocks, {} ties, {} contact points, {:.0f} kg free\n", r.model.blocks, r.model.ties,
+             r.model.contact_points, r.model.free_mass);
+  fmt::print("settling: {} steps, unbalanced force ratio {:.2e}{}, {:.1f} s\n", r.settling.steps, r.settling.unbalanced_ratio,
+             r.settling.converged ? "" : " (NOT converged)", r.settling.wall_seconds);
+  fmt::print("damping: {}\n", r.damping.description);
+  if (r.free_vibration.measured)
+    fmt::print("free vibration at OC1: {:.2f} Hz, damping ratio {:.4f} (the scheme's at that frequency: {:.4f})\n",
+               r.free_vibration.decay.frequency_hz, r.free_vibration.decay.damping_ratio, r.free_vibration.expected_damping_ratio);
+  fmt::print("timestep: {:.3e} s (critical {:.3e} s unscaled, damping factor {:.4f}); density scaling adds {:.3f} % of the mass over {} blocks\n",
+             r.timestep.dt, r.timestep.critical_unscaled, r.timestep.damping_factor, r.timestep.scaling.mass_increase_percent,
+             r.timestep.scaling.scaled_blocks);
+  for (const auto& L : r.levels) {
+    auto peak = [&](const std::string& channel) {
+      for (const auto& p : L.peaks)
+        if (p.name == channel) return fmt::format("{:+.2f}/{:+.2f}", p.max, p.min);
+      return std::string("-");
+    };
+    fmt::print("level {:g} %: {} steps in {:.1f} s ({:.0f} steps/s){}; OC1-y {} mm, ACC18-y {} m/s^2; damaged joints {} (cracked {}, "
+               "crushed {}, slipped {}); energy balance error {:.2e}\n",
+               L.level, L.steps, L.wall_seconds, L.steps_per_second(), L.interrupted ? " INTERRUPTED" : "",
+               [&] {
+                 for (const auto& p : L.peaks)
+                   if (p.name == "OC1_uy") return fmt::format("{:+.2f}/{:+.2f}", 1e3 * p.max, 1e3 * p.min);
+                 return std::string("-");
+               }(),
+               peak("ACC18_ay"), L.damage.total.damaged, L.damage.total.cracked, L.damage.total.crushed, L.damage.total.slipped,
+               L.energy.balance_error);
+  }
+  fmt::print("\n{}", analysis::table4(r));
+  fmt::print("outputs in {}/ (report.json, history_<level>.csv, damage_<level>.vtu, contacts_<level>.vtu/.csv); plots: "
+             "python3 scripts/plot_vault.py {}\n", command.study.out_dir, command.study.out_dir);
+  return r.interrupted ? 1 : 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -38,7 +206,14 @@ int main(int argc, char** argv) {
   model::ContactSettings contacts;
   bool geometry_only = false, json = false;
   std::string vtk_path, contacts_vtk_path;
-  app.add_flag("--geometry-only", geometry_only, "build and check the model and write it out (required for now)");
+  app.add_flag("--geometry-only", geometry_only, "build and check the model and write it out");
+  RunCommand run;
+  auto* run_app = app.add_subcommand("run", "settle the vault and shake it at each level in turn (the incremental analysis of Sect. 5)");
+  run.add_to(*run_app);
+  run_app->fallthrough();  // the geometry options may follow `run`
+  CompareCommand compare;
+  auto* compare_app = app.add_subcommand("compare", "error metrics of Sect. 5 (eq. 26-30) of a run against measured channels");
+  compare.add_to(*compare_app);
   app.add_option("--vtk", vtk_path, "write the blocks with their component and material as cell fields (.vtu)");
   app.add_option("--contacts-vtk", contacts_vtk_path,
                  "write the contact points with their joint kind, components, gap, area and normal (.vtu)");
@@ -64,10 +239,31 @@ int main(int argc, char** argv) {
   app.add_option("--max-cp-area", contacts.max_contact_point_area, "largest area per contact point, m^2 (0: CPs at the corners)")
       ->capture_default_str();
   if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
+  if (compare_app->parsed()) {
+    try {
+      return compare.run();
+    } catch (const InvalidArgument& e) {
+      std::fprintf(stderr, "cross_vault compare: error: %s\n", e.what());
+      return programs::exit_bad_input;
+    } catch (const InputError& e) {
+      std::fprintf(stderr, "cross_vault compare: error: %s\n", e.what());
+      return programs::exit_bad_input;
+    }
+  }
+  if (run_app->parsed()) {
+    run.study.vault = o;
+    try {
+      return run_study(run);
+    } catch (const InvalidArgument& e) {
+      std::fprintf(stderr, "cross_vault run: error: %s\n", e.what());
+      return programs::exit_bad_input;
+    } catch (const InputError& e) {
+      std::fprintf(stderr, "cross_vault run: error: %s\n", e.what());
+      return programs::exit_bad_input;
+    }
+  }
   if (!geometry_only) {
-    std::fprintf(stderr,
-                 "cross_vault: the dynamic analysis of the cross vault comes in a later issue; run with --geometry-only "
-                 "to build, check and write out the model\n");
+    std::fprintf(stderr, "cross_vault: say what to do: `cross_vault run [...]` for the analysis, or --geometry-only\n");
     return programs::exit_bad_input;
   }
   try {

@@ -1,6 +1,6 @@
 #pragma once
-// Running a simulation for a duration: a progress line (simulated time, steps per second, ETA) on stderr, and a
-// clean stop on Ctrl-C (SIGINT) or SIGTERM that keeps everything written so far.
+// Running a simulation for a duration: a progress line (simulated time of this run, steps per second, ETA) on
+// stderr, and a clean stop on Ctrl-C (SIGINT) or SIGTERM that keeps everything written so far.
 
 #include <atomic>
 #include <chrono>
@@ -61,8 +61,8 @@ RunSummary run_for(Simulation& simulation, double duration, EachStep each_step =
         const double wall = std::chrono::duration<double>(now - start).count();
         const double done = (simulation.time() - t_start) / duration;
         const double eta = done > 0 ? wall * (1 - done) / done : 0;
-        std::fprintf(stderr, "\r%s: t = %.4f / %.4f s, %.0f steps/s, ETA %.0f s   ", options.label, simulation.time(),
-                     t_end, summary.steps / wall, eta);
+        std::fprintf(stderr, "\r%s: t = %.4f / %.4f s, %.0f steps/s, ETA %.0f s   ", options.label,
+                     simulation.time() - t_start, duration, summary.steps / wall, eta);
         std::fflush(stderr);
       }
     }

@@ -1,0 +1,211 @@
+#pragma once
+// What the vault study records during a level: the monitor points' histories (displacement relative to the table,
+// acceleration from centred differences of the velocity, paper Sect. 5.3), streamed to CSV so that the file is
+// readable while the run goes on, with their peaks; and the census of damaged joints per component (Sect. 5.2).
+
+#include <algorithm>
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "blockdem/contact/mohr_coulomb.hpp"
+#include "blockdem/contact/softening.hpp"
+#include "blockdem/core/error.hpp"
+#include "blockdem/core/types.hpp"
+#include "blockdem/model/model.hpp"
+#include "blockdem/models/cross_vault.hpp"
+
+namespace blockdem::analysis {
+
+/// Peaks of one channel over a level.
+struct ChannelPeaks {
+  std::string name;  // <point>_<ux|uy|uz|ax|ay|az>
+  double max = -std::numeric_limits<double>::infinity();
+  double min = std::numeric_limits<double>::infinity();
+};
+
+/// Histories of the monitor points over one level. Columns: time (s from the start of the level), then per point
+/// <name>_ux, _uy, _uz (m, relative to the table and to the point's position at the start of the level) and
+/// <name>_ax, _ay, _az (m/s^2, absolute: centred differences of the recorded velocities, one-sided at the ends).
+class MonitorHistory {
+ public:
+  MonitorHistory(const model::Model& model, const std::vector<models::MonitorPoint>& points, std::size_t table_block)
+      : table_(table_block) {
+    const auto& b = model.bodies;
+    for (const auto& p : points) {
+      names_.push_back(p.name);
+      block_.push_back(p.block);
+      body_point_.push_back(b.rotation[p.block].transpose() * (p.position - b.position[p.block]));
+    }
+  }
+
+  std::size_t points() const { return names_.size(); }
+  const std::vector<std::string>& names() const { return names_; }
+
+  /// Starts a level: the reference positions are the current ones; `path` (may be empty) receives the CSV.
+  void begin_level(const model::Model& model, double time0, const std::string& path) {
+    time0_ = time0;
+    reference_.clear();
+    for (std::size_t p = 0; p < points(); ++p) reference_.push_back(world(model, p));
+    table_reference_ = model.bodies.position[table_];
+    samples_.clear();
+    written_ = 0;
+    peaks_.clear();
+    for (const auto& n : names_)
+      for (const char* q : {"ux", "uy", "uz", "ax", "ay", "az"}) peaks_.push_back({n + "_" + q});
+    out_ = std::ofstream();
+    if (!path.empty()) {
+      out_.open(path);
+      if (!out_) throw InvalidArgument("cannot open '" + path + "' for writing");
+      path_ = path;
+      out_ << "time";
+      for (const auto& p : peaks_) out_ << ',' << p.name;
+      out_ << '\n';
+    }
+  }
+
+  /// Records the state at simulation time t (s).
+  void sample(const model::Model& model, double t) {
+    const auto& b = model.bodies;
+    Sample s;
+    s.time = t - time0_;
+    const Vec3 table = b.position[table_] - table_reference_;
+    for (std::size_t p = 0; p < points(); ++p) {
+      const std::size_t i = block_[p];
+      const Vec3 arm = b.rotation[i] * body_point_[p];
+      s.displacement.push_back(b.position[i] + arm - reference_[p] - table);
+      s.velocity.push_back(b.velocity[i] + b.angular_velocity[i].cross(arm));
+    }
+    samples_.push_back(std::move(s));
+    // Row k needs samples k - 1 and k + 1: write the one before the newest.
+    if (samples_.size() >= 2) write_row(samples_.size() - 2);
+    if (samples_.size() > 3) samples_.erase(samples_.begin());
+  }
+
+  /// Writes the last row and closes the file.
+  void end_level() {
+    if (!samples_.empty()) write_row(samples_.size() - 1);
+    if (out_.is_open()) {
+      out_.flush();
+      if (!out_) throw InvalidArgument("writing '" + path_ + "' failed");
+      out_.close();
+    }
+  }
+
+  const std::vector<ChannelPeaks>& peaks() const { return peaks_; }
+  long long rows() const { return written_; }
+  /// Displacement relative to the table at the last sample, m.
+  Vec3 last_displacement(std::size_t p) const { return samples_.empty() ? Vec3::Zero() : samples_.back().displacement[p]; }
+
+ private:
+  struct Sample {
+    double time = 0;
+    std::vector<Vec3> displacement, velocity;
+  };
+
+  Vec3 world(const model::Model& model, std::size_t p) const { return model.bodies.to_world(block_[p], body_point_[p]); }
+
+  void write_row(std::size_t k) {
+    const std::size_t lo = k == 0 ? 0 : k - 1;
+    const std::size_t hi = k + 1 < samples_.size() ? k + 1 : k;
+    const auto& s = samples_[k];
+    const double span = samples_[hi].time - samples_[lo].time;
+    char buffer[40];
+    if (out_.is_open()) {
+      std::snprintf(buffer, sizeof buffer, "%.6f", s.time);
+      out_ << buffer;
+    }
+    for (std::size_t p = 0; p < points(); ++p) {
+      const Vec3 a = span > 0 ? Vec3((samples_[hi].velocity[p] - samples_[lo].velocity[p]) / span) : Vec3::Zero();
+      for (int c = 0; c < 6; ++c) {
+        const double value = c < 3 ? s.displacement[p][c] : a[c - 3];
+        auto& peak = peaks_[6 * p + static_cast<std::size_t>(c)];
+        peak.max = std::max(peak.max, value);
+        peak.min = std::min(peak.min, value);
+        if (out_.is_open()) {
+          std::snprintf(buffer, sizeof buffer, ",%.9g", value);
+          out_ << buffer;
+        }
+      }
+    }
+    if (out_.is_open()) out_ << '\n' << std::flush;
+    ++written_;
+  }
+
+  std::size_t table_;
+  std::vector<std::string> names_;
+  std::vector<std::size_t> block_;
+  std::vector<Vec3> body_point_, reference_;
+  Vec3 table_reference_ = Vec3::Zero();
+  double time0_ = 0;
+  std::vector<Sample> samples_;
+  std::vector<ChannelPeaks> peaks_;
+  long long written_ = 0;
+  std::ofstream out_;
+  std::string path_;
+};
+
+/// Damaged contact points, counted for each component a CP touches (a CP between vault and infill counts for both).
+struct DamageCensus {
+  struct Counts {
+    long long contact_points = 0;
+    long long cracked = 0;   // opened beyond the tensile strength (secant unloading)
+    long long crushed = 0;   // closed beyond the compressive hardening limit
+    long long slipped = 0;   // damaged or failed in shear only (Mohr-Coulomb: failed or at the Coulomb limit)
+    long long damaged = 0;   // any damage > 0 or failure
+    double max_damage = 0;
+  };
+  std::array<Counts, models::component_count> by_component{};
+  Counts total;
+};
+
+/// The census of a simulation of the cross vault (rigid blocks: joint tags are the components).
+template <class Simulation>
+DamageCensus damage_census(const Simulation& sim, const model::Model& model) {
+  DamageCensus census;
+  auto add = [&](std::size_t a, std::size_t b, bool cracked, bool crushed, bool slipped, double damage) {
+    const bool damaged = cracked || crushed || slipped || damage > 0;
+    auto count = [&](DamageCensus::Counts& c) {
+      ++c.contact_points;
+      c.cracked += cracked;
+      c.crushed += crushed;
+      c.slipped += slipped;
+      c.damaged += damaged;
+      c.max_damage = std::max(c.max_damage, damage);
+    };
+    const auto ta = static_cast<std::size_t>(model.bodies.joint_tag[a]), tb = static_cast<std::size_t>(model.bodies.joint_tag[b]);
+    count(census.total);
+    count(census.by_component[ta]);
+    if (tb != ta) count(census.by_component[tb]);
+  };
+  {
+    const auto& g = sim.template group<contact::ElastoSoftening>();
+    for (std::size_t c = 0; c < g.contacts(); ++c)
+      for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k) {
+        const auto& h = g.history[k];
+        const bool cracked = h.tension_secant < 1;
+        const bool crushed = h.compression_secant < 1;
+        add(g.body_a[c], g.body_b[c], cracked, crushed, h.damage > 0 && !cracked && !crushed, h.damage);
+      }
+  }
+  {
+    const auto& g = sim.template group<contact::MohrCoulomb>();
+    for (std::size_t c = 0; c < g.contacts(); ++c)
+      for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k) {
+        const auto& h = g.history[k];
+        const bool slipped = h.failed || h.slipping;
+        add(g.body_a[c], g.body_b[c], false, false, slipped, h.failed ? 1.0 : 0.0);
+      }
+  }
+  {
+    const auto& g = sim.template group<contact::Elastic>();
+    for (std::size_t c = 0; c < g.contacts(); ++c)
+      for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k) add(g.body_a[c], g.body_b[c], false, false, false, 0.0);
+  }
+  return census;
+}
+
+}  // namespace blockdem::analysis

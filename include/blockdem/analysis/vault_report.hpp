@@ -1,0 +1,339 @@
+#pragma once
+// What a cross-vault study reports (paper Table 4, Sect. 5): the result structs, report.json, the files written at
+// the end of each level (damage and contact points for ParaView, a contact table for the plots) and the snapshots.
+// Every file is written under a temporary name and renamed when complete.
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <system_error>
+#include <vector>
+
+#include "blockdem/analysis/free_decay.hpp"
+#include "blockdem/analysis/vault_recorders.hpp"
+#include "blockdem/analysis/vault_study_options.hpp"
+#include "blockdem/integrate/simulation.hpp"
+#include "blockdem/io/atomic_file.hpp"
+#include "blockdem/io/json.hpp"
+#include "blockdem/io/vtk.hpp"
+#include "blockdem/models/cross_vault.hpp"
+
+namespace blockdem::analysis {
+
+struct LevelResult {
+  double level = 0;          // % of the original record
+  double duration = 0;       // s asked for: the record's window and the rest after it
+  double simulated = 0;      // s run (less if interrupted)
+  long long steps = 0;
+  double wall_seconds = 0;
+  bool interrupted = false;
+  double final_table_velocity = 0;  // m/s left by the baseline correction at the end of the record
+  std::vector<ChannelPeaks> peaks;  // per monitor channel
+  std::vector<Vec3> residual_displacement;  // m, per monitor point at the end of the level, relative to the table
+  DamageCensus damage;              // at the end of the level (accumulated over the levels so far)
+  EnergyReport energy;              // since the start of the dynamic run, at the end of the level
+  EnergyReport energy_at_start;     // the same at the start of the level
+
+  double steps_per_second() const { return wall_seconds > 0 ? steps / wall_seconds : 0; }
+};
+
+struct SettlingResult {
+  long long steps = 0;
+  double wall_seconds = 0, unbalanced_ratio = 1;
+  double dt = 0;  // s, of the static mass scaling
+  bool converged = false;
+};
+
+/// The first mode of the settled vault in free decay (measure_free_vibration).
+struct FreeVibrationResult {
+  bool measured = false;
+  FreeDecay decay;
+  double expected_damping_ratio = 0;  // of the damping scheme at the measured frequency (eq. 10, eq. 19)
+  double pulse_velocity = 0, pulse_duration = 0;  // m/s, s
+  std::string note;                   // why it was not measured
+  std::vector<double> time, response; // s from the pulse, m: OC1 along the axis relative to the table
+};
+
+struct VaultStudyResult {
+  VaultStudyOptions options;
+  struct {
+    std::string name, cut, baseline;
+    bool synthetic = false;
+    double duration = 0;             // s, of the cut at 100 % of the input
+    double pga = 0, pgv = 0, pgd = 0;  // of the corrected cut as given (at --record-level)
+  } input;
+  struct {
+    std::size_t blocks = 0, contact_points = 0, ties = 0;
+    double free_mass = 0;  // kg
+  } model;
+  SettlingResult settling;
+  struct {
+    std::string scheme, description;
+  } damping;
+  struct AddedMass {
+    long long blocks = 0;
+    double added_mass = 0;  // kg
+  };
+  struct {
+    double critical_unscaled = 0;  // s, eq. 1-3 with the damping factor, before density scaling
+    double damping_factor = 1;     // eq. 11 / eq. 20 at omega_max
+    double critical = 0;           // s, after density scaling
+    double dt = 0;                 // s, the timestep of the dynamic run
+    DensityScaling scaling;
+    std::array<AddedMass, models::component_count> added_by_component{};
+  } timestep;
+  FreeVibrationResult free_vibration;       // if options.free_vibration
+  std::vector<std::string> monitor_points;  // names, in the order of the histories' columns
+  std::vector<LevelResult> levels;
+  bool interrupted = false;
+  double wall_seconds = 0;
+};
+
+/// The paper's Table 4 for one run: dynamic timestep, minutes per level, total hours.
+inline std::string table4(const VaultStudyResult& r) {
+  std::string s;
+  char line[256];
+  std::snprintf(line, sizeof line, "%-10s %-14s", "Model", "dt [s]");
+  s += line;
+  for (const auto& L : r.levels) {
+    std::string head = models::detail::num(L.level);
+    head += " % [min]";
+    std::snprintf(line, sizeof line, " %12s", head.c_str());
+    s += line;
+  }
+  s += "  Total [h]\n";
+  double total = 0;
+  std::snprintf(line, sizeof line, "%-10s %-14.3e", r.damping.scheme.c_str(), r.timestep.dt);
+  s += line;
+  for (const auto& L : r.levels) {
+    std::snprintf(line, sizeof line, " %12.2f", L.wall_seconds / 60);
+    s += line;
+    total += L.wall_seconds;
+  }
+  std::snprintf(line, sizeof line, "  %9.4f\n", total / 3600);
+  s += line;
+  return s;
+}
+
+namespace detail {
+
+/// Creates the output folder and checks that a file can be written in it.
+inline void prepare_output_folder(const std::string& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error || !std::filesystem::is_directory(dir))
+    throw InvalidArgument("--out: cannot create the output folder '" + dir + "'" + (error ? ": " + error.message() : std::string()));
+  const std::string probe = dir + "/.blockdem_write_test";
+  {
+    std::ofstream out(probe);
+    if (!(out << "ok")) throw InvalidArgument("--out: cannot write in the output folder '" + dir + "'");
+  }
+  std::filesystem::remove(probe, error);
+  // A report left by an earlier run would look like this run's until this one writes its own.
+  std::filesystem::remove(dir + "/report.json", error);
+}
+
+inline io::JsonObject energy_json(const EnergyReport& e) {
+  io::JsonObject j;
+  j.add("work_in_j", e.gravity_work + e.base_work).add("gravity_work_j", e.gravity_work).add("base_work_j", e.base_work)
+      .add("kinetic_j", e.kinetic).add("elastic_j", e.elastic).add("viscous_j", e.viscous).add("hysteretic_j", e.slip)
+      .add("balance_error", e.balance_error);
+  return j;
+}
+
+inline io::JsonObject census_json(const DamageCensus::Counts& c) {
+  io::JsonObject j;
+  j.add("contact_points", c.contact_points).add("cracked", c.cracked).add("crushed", c.crushed).add("slipped", c.slipped)
+      .add("damaged", c.damaged).add("max_damage", c.max_damage);
+  return j;
+}
+
+inline std::string report_json(const VaultStudyResult& r) {
+  using io::JsonObject;
+  const auto& o = r.options;
+  JsonObject input, model, settling, damping, timestep, table;
+  input.add("record", r.input.name).add("synthetic", r.input.synthetic).add("record_level_percent", o.record_level)
+      .add("cut", r.input.cut).add("duration_s", r.input.duration).add("baseline", r.input.baseline)
+      .add("axis", std::string(1, o.axis)).add("pga_m_s2", r.input.pga).add("pgv_m_s", r.input.pgv).add("pgd_m", r.input.pgd);
+  if (r.input.synthetic) input.add("note", "the built-in synthetic AQA75 stand-in, NOT the AQA recording");
+  model.add("kinematics", "rigid").add("blocks", static_cast<long long>(r.model.blocks))
+      .add("nodes", 0LL).add("tetrahedra", 0LL)
+      .add("contact_points", static_cast<long long>(r.model.contact_points)).add("ties", static_cast<long long>(r.model.ties))
+      .add("free_mass_kg", r.model.free_mass);
+  settling.add("steps", r.settling.steps).add("wall_seconds", r.settling.wall_seconds)
+      .add("unbalanced_force_ratio", r.settling.unbalanced_ratio).add("tolerance", o.settle_tolerance)
+      .add("converged", r.settling.converged).add("static_mass_scaling_dt_s", r.settling.dt);
+  damping.add("scheme", r.damping.scheme).add("description", r.damping.description);
+  JsonObject where;
+  for (const auto c : models::all_components) {
+    const auto& a = r.timestep.added_by_component[models::index(c)];
+    if (a.blocks == 0) continue;
+    JsonObject w;
+    w.add("blocks", a.blocks).add("added_mass_kg", a.added_mass);
+    where.add(models::name(c), w);
+  }
+  const auto& s = r.timestep.scaling;
+  timestep.add("critical_unscaled_s", r.timestep.critical_unscaled).add("damping_factor", r.timestep.damping_factor)
+      .add("critical_s", r.timestep.critical).add("dt_s", r.timestep.dt)
+      .add("density_scaling_mass_added_kg", s.added_mass).add("density_scaling_mass_increase_percent", s.mass_increase_percent)
+      .add("density_scaled_blocks", static_cast<long long>(s.scaled_blocks))
+      .add("max_density_scaling_factor", s.max_density_scaling_factor).add("density_scaling_by_component", where);
+  std::vector<JsonObject> levels;
+  std::vector<double> minutes;
+  double total = 0;
+  for (const auto& L : r.levels) {
+    JsonObject l, peaks, residual, damage;
+    for (const auto& p : L.peaks) {
+      JsonObject q;
+      q.add("max", p.max).add("min", p.min);
+      peaks.add(p.name, q);
+    }
+    for (std::size_t p = 0; p < L.residual_displacement.size(); ++p) {
+      const auto& u = L.residual_displacement[p];
+      std::string vector(1, '[');  // (GCC 12 warns, wrongly, of an overlap in "[" + std::string)
+      for (int c = 0; c < 3; ++c) {
+        vector += JsonObject::number(u[c]);
+        vector += c < 2 ? ", " : "]";
+      }
+      residual.add_raw(r.monitor_points[p], vector);
+    }
+    damage.add("total", census_json(L.damage.total));
+    for (const auto c : models::all_components) damage.add(models::name(c), census_json(L.damage.by_component[models::index(c)]));
+    EnergyReport delta = L.energy;
+    delta.gravity_work -= L.energy_at_start.gravity_work;
+    delta.base_work -= L.energy_at_start.base_work;
+    delta.kinetic -= L.energy_at_start.kinetic;
+    delta.elastic -= L.energy_at_start.elastic;
+    delta.viscous -= L.energy_at_start.viscous;
+    delta.slip -= L.energy_at_start.slip;
+    l.add("level_percent", L.level).add("duration_s", L.duration).add("simulated_s", L.simulated).add("steps", L.steps)
+        .add("wall_seconds", L.wall_seconds).add("steps_per_second", L.steps_per_second()).add("dt_s", r.timestep.dt)
+        .add("interrupted", L.interrupted).add("final_table_velocity_m_s", L.final_table_velocity)
+        .add("peaks", peaks).add("residual_displacement_m", residual).add("damage", damage)
+        .add("energy", energy_json(L.energy)).add("energy_change_over_level", energy_json(delta));
+    levels.push_back(l);
+    minutes.push_back(L.wall_seconds / 60);
+    total += L.wall_seconds;
+  }
+  table.add("model", r.damping.scheme).add("dynamic_timestep_s", r.timestep.dt).add("minutes_per_level", minutes)
+      .add("total_hours", total / 3600);
+  JsonObject out;
+  out.add("program", "blockdem cross_vault run").add("input", input).add("model", model).add("settling", settling);
+  if (o.free_vibration) {
+    const auto& f = r.free_vibration;
+    JsonObject j;
+    j.add("measured", f.measured).add("frequency_hz", f.decay.frequency_hz).add("damping_ratio", f.decay.damping_ratio)
+        .add("expected_damping_ratio", f.expected_damping_ratio).add("cycles", f.decay.cycles)
+        .add("first_amplitude_m", f.decay.first_amplitude).add("pulse_velocity_m_s", f.pulse_velocity)
+        .add("pulse_duration_s", f.pulse_duration);
+    if (!f.note.empty()) j.add("note", f.note);
+    out.add("free_vibration", j);
+  }
+  out
+      .add("damping", damping).add("timestep", timestep).add("levels", levels).add("table4", table)
+      .add("interrupted", r.interrupted).add("complete", !r.interrupted && r.levels.size() == o.levels.size())
+      .add("wall_seconds", r.wall_seconds);
+  return out.str();
+}
+
+/// free_vibration.csv: the OC1 response of measure_free_vibration.
+inline void write_free_vibration(const std::string& dir, const FreeVibrationResult& f) {
+  io::write_atomically(dir + "/free_vibration.csv", [&](const std::string& path) {
+    std::ofstream out(path);
+    out << "time,OC1_u\n";
+    char line[64];
+    for (std::size_t i = 0; i < f.time.size(); ++i) {
+      std::snprintf(line, sizeof line, "%.6f,%.9g\n", f.time[i], f.response[i]);
+      out << line;
+    }
+    if (!out) throw InvalidArgument("cannot write '" + path + "'");
+  });
+}
+
+inline void write_report(const std::string& dir, const VaultStudyResult& r) {
+  const std::string text = report_json(r) + "\n";
+  io::write_atomically(dir + "/report.json", [&](const std::string& path) {
+    std::ofstream out(path);
+    if (!(out << text)) throw InvalidArgument("cannot write '" + path + "'");
+  });
+}
+
+inline io::BlockFields block_fields(const model::Model& model, const models::CrossVault& vault, const std::vector<Vec3>& reference) {
+  io::BlockFields fields;
+  auto& component = fields["component"];
+  auto& displacement = fields["displacement"];
+  for (std::size_t i = 0; i < model.bodies.size(); ++i) {
+    component.push_back(static_cast<double>(models::index(vault.blocks[i].component)));
+    displacement.push_back((model.bodies.position[i] - reference[i]).norm());
+  }
+  return fields;
+}
+
+/// At the end of a level: damage_<level>.vtu (blocks with their component, displacement since settling and the
+/// largest damage of their contact points), contacts_<level>.vtu (the contact points with damage, gap, stresses) and
+/// contacts_<level>.csv (the same as a table, with the components on each side, for the plots).
+template <class Sim>
+void write_level_outputs(const std::string& dir, const std::string& label, const Sim& sim, const model::Model& model,
+                         const models::CrossVault& vault, const std::vector<Vec3>& reference) {
+  auto fields = block_fields(model, vault, reference);
+  auto& block_damage = fields["max_damage"];
+  block_damage.assign(model.bodies.size(), 0.0);
+  sim.visit_contacts([&](const auto& c) {
+    block_damage[c.block_a] = std::max(block_damage[c.block_a], c.damage);
+    block_damage[c.block_b] = std::max(block_damage[c.block_b], c.damage);
+  });
+  io::write_atomically(dir + "/damage_" + label + ".vtu", [&](const std::string& p) { io::write_blocks_vtu(p, model, fields); });
+  io::write_atomically(dir + "/contacts_" + label + ".vtu", [&](const std::string& p) { io::write_contacts_vtu(p, sim); });
+  io::write_atomically(dir + "/contacts_" + label + ".csv", [&](const std::string& p) {
+    std::ofstream out(p);
+    out << "x,y,z,nx,ny,nz,area,gap,normal_stress,shear_stress,damage,component_a,component_b\n";
+    char line[320];
+    sim.visit_contacts([&](const auto& c) {
+      std::snprintf(line, sizeof line, "%.6g,%.6g,%.6g,%.5g,%.5g,%.5g,%.5g,%.5g,%.6g,%.6g,%.5g,%s,%s\n", c.position.x(),
+                    c.position.y(), c.position.z(), c.normal.x(), c.normal.y(), c.normal.z(), c.area, c.gap, c.normal_stress,
+                    c.shear_stress, c.damage, std::string(models::name(vault.blocks[c.block_a].component)).c_str(),
+                    std::string(models::name(vault.blocks[c.block_b].component)).c_str());
+      out << line;
+    });
+    if (!out) throw InvalidArgument("cannot write '" + p + "'");
+  });
+}
+
+}  // namespace detail
+
+/// The time series of the blocks for playing the shaking back in ParaView: snapshots/level<L>_<k>.vtu, and
+/// snapshots.pvd listing them all by simulation time, rewritten with each frame so that it is always complete.
+class SnapshotSeries {
+ public:
+  explicit SnapshotSeries(std::string dir) : dir_(std::move(dir)) {}
+
+  void write(const std::string& label, double time, const model::Model& model, const models::CrossVault& vault,
+             const std::vector<Vec3>& reference) {
+    std::filesystem::create_directories(dir_ + "/snapshots");
+    const std::string name = "snapshots/level" + label + "_" + std::to_string(frames_in_level_[label]++) + ".vtu";
+    const auto fields = detail::block_fields(model, vault, reference);
+    io::write_atomically(dir_ + "/" + name, [&](const std::string& p) { io::write_blocks_vtu(p, model, fields); });
+    frames_.emplace_back(time, name);
+    io::write_atomically(dir_ + "/snapshots.pvd", [&](const std::string& p) {
+      std::ofstream out(p);
+      out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+      char line[256];
+      for (const auto& [when, file] : frames_) {
+        std::snprintf(line, sizeof line, "<DataSet timestep=\"%.6f\" file=\"%s\"/>\n", when, file.c_str());
+        out << line;
+      }
+      out << "</Collection>\n</VTKFile>\n";
+      if (!out) throw InvalidArgument("cannot write '" + p + "'");
+    });
+  }
+
+ private:
+  std::string dir_;
+  std::map<std::string, int> frames_in_level_;
+  std::vector<std::pair<double, std::string>> frames_;
+};
+
+}  // namespace blockdem::analysis

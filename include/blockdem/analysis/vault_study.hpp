@@ -1,0 +1,421 @@
+#pragma once
+// The incremental shake-table analysis of the LNEC cross vault (paper Sect. 5, 6.1; Table 4, Figs. 14-18): the vault
+// settled under gravity, then shaken at each level of the record in turn on one state (damage accumulates), under
+// one damping scheme, with the monitor histories, the damage at the end of each level, the energy balance and the
+// timings. run_vault_study() is the driver; the outputs it writes are listed in write_level_outputs().
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "blockdem/analysis/free_decay.hpp"
+#include "blockdem/analysis/vault_recorders.hpp"
+#include "blockdem/analysis/vault_report.hpp"
+#include "blockdem/analysis/vault_study_options.hpp"
+#include "blockdem/contact/elastic.hpp"
+#include "blockdem/contact/mohr_coulomb.hpp"
+#include "blockdem/contact/softening.hpp"
+#include "blockdem/damping/local.hpp"
+#include "blockdem/damping/mass_proportional.hpp"
+#include "blockdem/damping/maxwell.hpp"
+#include "blockdem/damping/maxwell_fit.hpp"
+#include "blockdem/damping/none.hpp"
+#include "blockdem/damping/rayleigh.hpp"
+#include "blockdem/damping/stiffness_proportional.hpp"
+#include "blockdem/integrate/run.hpp"
+#include "blockdem/integrate/simulation.hpp"
+#include "blockdem/io/atomic_file.hpp"
+#include "blockdem/io/vtk.hpp"
+#include "blockdem/models/cross_vault.hpp"
+#include "blockdem/motion/base_motion.hpp"
+#include "blockdem/motion/integration.hpp"
+#include "blockdem/motion/processing.hpp"
+#include "blockdem/motion/synthetic.hpp"
+#include "blockdem/motion/truncation.hpp"
+#include "blockdem/motion/wavelet_truncation.hpp"
+
+namespace blockdem::analysis {
+
+/// The simulation of the vault under damping policy D: the three joint laws of the paper (Sect. 3.1-3.2).
+template <class D>
+using VaultSimulation = Simulation<D, contact::ElastoSoftening, contact::MohrCoulomb, contact::Elastic>;
+
+namespace detail {
+
+inline std::string level_label(double level) { return models::detail::num(level); }
+
+/// The record as the options ask for it: read or synthetic, baseline corrected as a whole (a filter on a short cut
+/// would ring at its ends), then cut to the window or to the wavelet pulse support.
+inline motion::Record input_record(const VaultStudyOptions& o, std::string& cut_note) {
+  motion::Record record = o.record ? *o.record
+                          : o.record_path.empty() ? motion::synthetic_aqa75()
+                                                  : motion::read_record(o.record_path, o.read);
+  record.validate("input record");
+  record = motion::correct_baseline(std::move(record), motion::parse_baseline(o.baseline));
+  if (o.truncation == Truncation::wavelet) {
+    const auto w = motion::wavelet_truncation(record);
+    char note[128];
+    std::snprintf(note, sizeof note, "wavelet truncation (Sect. 6.1.2): pulse support %.3f-%.3f s", w.truncation.start, w.truncation.end);
+    cut_note = note;
+    return w.truncation.record;
+  }
+  if (o.window_start >= record.end_time() || o.window_end > record.end_time() + 0.5 * record.dt)
+    throw InvalidArgument("cross vault study: --window " + models::detail::num(o.window_start) + " " +
+                          models::detail::num(o.window_end) + " s lies outside the record '" + record.name + "', which spans [" +
+                          models::detail::num(record.start_time) + ", " + models::detail::num(record.end_time()) + "] s");
+  cut_note = "window " + models::detail::num(o.window_start) + "-" + models::detail::num(o.window_end) + " s";
+  return motion::truncate_window(record, o.window_start, o.window_end).record;
+}
+
+/// The rigid-block model with the steel ties as trusses between their anchor blocks.
+inline model::Model vault_model(const models::CrossVault& v) {
+  model::Model m = models::build_rigid_model(v);
+  for (const auto& t : v.ties)
+    m.add_truss(m.block_end(t.block_a, t.end_a), m.block_end(t.block_b, t.end_b), t.area, t.youngs_modulus, t.density,
+                t.pretension, t.name);
+  return m;
+}
+
+template <class Sim>
+typename Sim::PropertyFunction vault_properties(const models::CrossVault& v) {
+  return [&v](int a, int b) {
+    return std::visit([](const auto& p) { return typename Sim::Properties(p); }, models::joint_law(v.joint(a, b)));
+  };
+}
+
+/// Added mass (kg) that partial density scaling to `target` (s) would need: every free rigid block whose own limit
+/// (translation and rotation, eq. 1-3 with the damping factor of eq. 11/20) is below the target is made heavier.
+template <class Sim, class Factor>
+double density_scaling_mass(const Sim& sim, double target, Factor timestep_factor) {
+  const auto& b = sim.model().bodies;
+  std::vector<double> kt, kr, kn;
+  sim.stiffnesses(kt, kr, kn);
+  auto limit = [&](double omega) { return Sim::default_safety_factor * 2.0 / omega * timestep_factor(omega); };
+  double lo = 1e-12, hi = 1e15;
+  for (int it = 0; it < 200; ++it) {
+    const double mid = std::sqrt(lo * hi);
+    (limit(mid) > target ? lo : hi) = mid;
+  }
+  const double omega2 = lo * lo;
+  double added = 0;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (b.motion[i] != model::Motion::free) continue;
+    const double factor = std::max({1.0, kt[i] / (omega2 * b.mass[i]), kr[i] / (omega2 * b.principal_inertia[i].minCoeff())});
+    added += b.mass[i] * (factor - 1.0);
+  }
+  return added;
+}
+
+/// Static equilibrium under gravity with local damping (DESIGN §4): static, so every block takes the mass that gives
+/// one common timestep (3DEC's static mass scaling); the real masses are back when it returns.
+template <class Settle>
+void settle(Settle& sim, double dt, const VaultStudyOptions& o, SettlingResult& out) {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  sim.scale_masses_for_statics(dt);
+  out.dt = sim.timestep();
+  auto last = t0;
+  for (long long n = 0; n < o.settle_max_steps; ++n) {
+    sim.step();
+    ++out.steps;
+    if (n % 10 != 9) continue;
+    out.unbalanced_ratio = sim.unbalanced_force_ratio();
+    if (out.unbalanced_ratio <= o.settle_tolerance) {
+      out.converged = true;
+      break;
+    }
+    if (interrupted()) break;
+    if (o.progress && clock::now() - last > std::chrono::seconds(1)) {
+      last = clock::now();
+      std::fprintf(stderr, "\rsettling: step %lld, unbalanced force ratio %.2e (tolerance %.0e)   ", out.steps, out.unbalanced_ratio,
+                   o.settle_tolerance);
+      std::fflush(stderr);
+    }
+  }
+  sim.restore_real_masses();
+  out.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+  if (o.progress)
+    std::fprintf(stderr, "\rsettling: %lld steps, unbalanced force ratio %.2e, %.1f s%s\n", out.steps, out.unbalanced_ratio,
+                 out.wall_seconds, out.converged ? "" : " (NOT converged)");
+}
+
+}  // namespace detail
+
+/// Calls f(policy) with the damping policy of the options (the Maxwell branches fitted here, Sect. 4.2), and
+/// describes it in `description`.
+template <class F>
+decltype(auto) with_damping_policy(const VaultStudyOptions& o, std::string& description, F&& f) {
+  const double z = o.scheme_zeta();
+  char text[160];
+  switch (o.damping) {
+    case DampingScheme::none:
+      description = "none (noDamp: hysteretic damping of the joints only)";
+      return f(damping::None{});
+    case DampingScheme::mass: {
+      std::snprintf(text, sizeof text, "mass-proportional (MassProp), %.3g %% at %.4g Hz", 100 * z, o.frequency_hz);
+      description = text;
+      return f(damping::MassProportional::from_damping_ratio(z, o.frequency_hz));  // eq. 10
+    }
+    case DampingScheme::stiffness: {
+      std::snprintf(text, sizeof text, "stiffness-proportional, %.3g %% at %.4g Hz", 100 * z, o.frequency_hz);
+      description = text;
+      return f(damping::StiffnessProportional::from_damping_ratio(z, o.frequency_hz));  // eq. 10
+    }
+    case DampingScheme::rayleigh: {
+      std::snprintf(text, sizeof text, "Rayleigh, %.3g %% at %.4g and %.4g Hz", 100 * z, o.lower_hz, o.upper_hz);
+      description = text;
+      return f(damping::Rayleigh::from_two_frequencies(z, o.lower_hz, z, o.upper_hz));  // eq. 10
+    }
+    case DampingScheme::maxwell: break;
+  }
+  damping::MaxwellFitOptions fit_options;
+  fit_options.damping_ratio = z;
+  fit_options.lower_hz = o.lower_hz;
+  fit_options.upper_hz = o.upper_hz;
+  fit_options.branches = o.branches;
+  const auto fit = damping::fit_maxwell(fit_options);
+  if (!fit.converged)
+    throw InvalidArgument("cross vault study: the Maxwell fit of " + models::detail::num(100 * z) + " % over " +
+                          models::detail::num(o.lower_hz) + "-" + models::detail::num(o.upper_hz) + " Hz with " +
+                          std::to_string(o.branches) + " branches did not converge");
+  std::snprintf(text, sizeof text, "Maxwell, %.3g %% over %.4g-%.4g Hz, %d branches (band error %+.2f %% / %+.2f %%)", 100 * z,
+                o.lower_hz, o.upper_hz, o.branches, 100 * fit.rel_error_min, 100 * fit.rel_error_max);
+  description = text;
+  auto with = [&]<int N>(std::integral_constant<int, N>) -> decltype(auto) {
+    std::array<damping::MaxwellBranch, N> branches{};
+    std::copy_n(fit.branch.begin(), N, branches.begin());
+    return f(damping::Maxwell<N>(branches));
+  };
+  switch (o.branches) {
+    case 1: return with(std::integral_constant<int, 1>{});
+    case 2: return with(std::integral_constant<int, 2>{});
+    case 3: return with(std::integral_constant<int, 3>{});
+    default: return with(std::integral_constant<int, 4>{});
+  }
+}
+
+/// The vault of the options, settled under gravity and handed to f(sim, model, vault, table_block, policy) as a
+/// simulation with the options' damping policy at the dynamic timestep (after partial density scaling). Fills the
+/// model, settling, damping and timestep parts of `r`; with o.out_dir set, writes report.json once settled. Returns
+/// without calling f if interrupted while settling.
+template <class F>
+void with_settled_vault(const VaultStudyOptions& o, VaultStudyResult& r, F&& f) {
+  const auto vault = models::make_cross_vault(o.vault);
+  model::Model model = detail::vault_model(vault);
+  std::size_t table = 0;
+  while (table < vault.blocks.size() && vault.blocks[table].component != models::Component::slab) ++table;
+  r.model.blocks = model.bodies.size();
+  r.model.ties = model.deformable.trusses.size();
+  r.model.free_mass = model.total_mass();
+
+  std::string description;
+  with_damping_policy(o, description, [&]<class D>(D policy) {
+    r.damping.description = description;
+    r.damping.scheme = name(o.damping);
+    using Settle = VaultSimulation<damping::Local>;
+    using Dynamic = VaultSimulation<D>;
+    Settle settle(model, damping::Local{}, detail::vault_properties<Settle>(vault));
+    r.model.contact_points = settle.contact_points();
+    // The timestep of the dynamic run, chosen before settling so that a bad target is refused at once.
+    auto factor = [&](double omega) { return policy.timestep_factor(omega); };
+    const double free_mass = r.model.free_mass;
+    {
+      // Local damping leaves the critical timestep 2 / omega_max (eq. 1); the dynamic policy multiplies it by its
+      // factor at omega_max (eq. 11, eq. 20).
+      const double omega_max = 2.0 / settle.critical_timestep();
+      r.timestep.damping_factor = factor(omega_max);
+      r.timestep.critical_unscaled = settle.critical_timestep() * r.timestep.damping_factor;
+    }
+    const double unscaled = Settle::default_safety_factor * r.timestep.critical_unscaled;
+    double target = o.target_dt;
+    if (target == 0) {
+      double lo = unscaled, hi = 1e-3;
+      for (int it = 0; it < 60; ++it) {
+        const double mid = std::sqrt(lo * hi);
+        (100 * detail::density_scaling_mass(settle, mid, factor) / free_mass <= o.default_mass_increase_percent ? lo : hi) = mid;
+      }
+      target = lo;
+    }
+    if (target > unscaled) {
+      const double percent = 100 * detail::density_scaling_mass(settle, target, factor) / free_mass;
+      if (percent > o.max_mass_increase_percent)
+        throw InvalidArgument("cross vault study: --target-dt " + models::detail::num(target) + " s needs " +
+                              models::detail::num(percent) + " % more mass by density scaling, above --max-mass-increase " +
+                              models::detail::num(o.max_mass_increase_percent) + " %; this model runs unscaled at " +
+                              models::detail::num(unscaled) + " s");
+    }
+
+    detail::settle(settle, std::max(unscaled, target), o, r.settling);
+    if (!o.out_dir.empty()) detail::write_report(o.out_dir, r);
+    if (interrupted()) {
+      r.interrupted = true;
+      return;
+    }
+
+    Dynamic sim(settle, policy);
+    if (target > sim.timestep()) {
+      const std::vector<double> real_mass = model.bodies.mass;
+      r.timestep.scaling = sim.scale_density_to(target);
+      for (std::size_t i = 0; i < model.bodies.size(); ++i)
+        if (model.bodies.mass[i] > real_mass[i]) {
+          auto& where = r.timestep.added_by_component[models::index(vault.blocks[i].component)];
+          where.blocks += 1;
+          where.added_mass += model.bodies.mass[i] - real_mass[i];
+        }
+    }
+    r.timestep.dt = sim.timestep();
+    r.timestep.critical = sim.critical_timestep();
+
+    f(sim, model, vault, table, policy);
+  });
+}
+
+/// The settled vault's first natural frequency and damping ratio under the options' damping policy: a short table
+/// pulse along the axis (one sine cycle of velocity, amplitude `pulse_velocity` m/s over `pulse_duration` s, small
+/// enough for the joints to stay elastic), then free decay for `duration` s, analysed at OC1 (analyse_first_mode).
+/// Runs on its own settled model: the study's state is not touched.
+inline FreeVibrationResult measure_free_vibration(VaultStudyOptions o, double duration = 1.0, double pulse_velocity = 1e-3,
+                                                  double pulse_duration = 0.05) {
+  o.out_dir.clear();
+  o.free_vibration = false;
+  VaultStudyResult scratch;
+  FreeVibrationResult fv;
+  fv.pulse_velocity = pulse_velocity;
+  fv.pulse_duration = pulse_duration;
+  with_settled_vault(o, scratch, [&](auto& sim, model::Model& model, const models::CrossVault& vault, std::size_t table,
+                                     const auto& policy) {
+    std::size_t oc1 = 0;
+    while (oc1 + 1 < vault.monitor_points.size() && vault.monitor_points[oc1].name != "OC1") ++oc1;
+    const auto& point = vault.monitor_points[oc1];
+    const auto& b = model.bodies;
+    const Vec3 body_point = b.rotation[point.block].transpose() * (point.position - b.position[point.block]);
+    const Vec3 reference = b.to_world(point.block, body_point), table_reference = b.position[table];
+    const Vec3 axis = o.axis == 'x' ? Vec3::UnitX() : Vec3::UnitY();
+    const double t0 = sim.time();
+    model.base_velocity = [=](double t) {
+      const double u = (t - t0) / pulse_duration;
+      const double v = u > 0 && u < 1 ? pulse_velocity * std::sin(2 * pi * u) : 0.0;
+      return Vec3(v * axis);
+    };
+    std::vector<double> time, response;
+    const auto every = std::max<long long>(1, std::llround(2e-4 / sim.timestep()));  // uniform sampling for the filter
+    const double interval = static_cast<double>(every) * sim.timestep();
+    for (long long n = 1; sim.time() < t0 + pulse_duration + duration && !interrupted(); ++n) {
+      sim.step();
+      if (n % every != 0 || sim.time() < t0 + pulse_duration) continue;
+      const Vec3 u = b.to_world(point.block, body_point) - reference - (b.position[table] - table_reference);
+      time.push_back(sim.time() - t0);
+      response.push_back(u.dot(axis));
+    }
+    model.base_velocity = [](double) { return Vec3::Zero(); };
+    fv.time = time;
+    fv.response = response;
+    try {
+      fv.decay = analyse_first_mode(response, interval);
+      fv.measured = true;
+    } catch (const InvalidArgument& e) {
+      fv.note = e.what();
+      return;
+    }
+    const double omega = 2 * pi * fv.decay.frequency_hz;
+    if constexpr (requires { policy.damping_ratio(omega); }) fv.expected_damping_ratio = policy.damping_ratio(omega);  // eq. 10, eq. 19
+  });
+  return fv;
+}
+
+/// Runs the study. Writes into o.out_dir (if set) as it goes; stops cleanly after the current step on SIGINT/SIGTERM
+/// once stop_on_interrupt() was called (the result says so, and what was written stays complete).
+inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  o.validate();
+  VaultStudyResult r;
+  r.options = o;
+  if (!o.out_dir.empty()) detail::prepare_output_folder(o.out_dir);
+
+  const motion::Record cut = detail::input_record(o, r.input.cut);
+  r.input.name = cut.name;
+  r.input.synthetic = cut.synthetic;
+  r.input.duration = cut.duration();
+  r.input.baseline = motion::to_string(motion::parse_baseline(o.baseline));
+  {
+    const auto peaks = motion::peak_values(cut);
+    r.input.pga = peaks.pga;
+    r.input.pgv = peaks.pgv;
+    r.input.pgd = peaks.pgd;
+  }
+  if (o.free_vibration) {
+    r.free_vibration = measure_free_vibration(o);
+    if (!o.out_dir.empty()) detail::write_free_vibration(o.out_dir, r.free_vibration);
+  }
+
+  with_settled_vault(o, r, [&](auto& sim, model::Model& model, const models::CrossVault& vault, std::size_t table, const auto&) {
+    MonitorHistory history(model, vault.monitor_points, table);
+    r.monitor_points = history.names();
+    SnapshotSeries snapshots(o.out_dir);
+    const auto settled_position = model.bodies.position;
+    const Vec3 axis = o.axis == 'x' ? Vec3::UnitX() : Vec3::UnitY();
+    double table_velocity = 0;  // m/s: each level starts where the last left the table (no impulse between levels)
+    for (const double level : o.levels) {
+      const std::string label = detail::level_label(level);
+      LevelResult L;
+      L.level = level;
+      const motion::BaseMotion table_motion(motion::scale(cut, level / o.record_level), {}, axis, sim.time(), table_velocity);
+      table_velocity = table_motion.final_velocity();
+      model.base_velocity = [&table_motion](double t) { return table_motion.velocity_vector(t); };
+      L.final_table_velocity = table_motion.final_velocity();
+      L.duration = table_motion.duration() + o.rest;
+      history.begin_level(model, sim.time(), o.out_dir.empty() ? std::string() : o.out_dir + "/history_" + label + ".csv");
+      const auto energy0 = sim.energy();
+      double next_sample = sim.time();
+      double next_snapshot = sim.time();
+      auto record = [&] {
+        if (sim.time() >= next_sample - 0.5 * sim.timestep()) {
+          history.sample(model, sim.time());
+          next_sample += o.history_dt;
+        }
+        if (o.snapshots_every > 0 && !o.out_dir.empty() && sim.time() >= next_snapshot - 0.5 * sim.timestep()) {
+          snapshots.write(label, sim.time(), model, vault, settled_position);
+          next_snapshot += o.snapshots_every;
+        }
+      };
+      record();
+      RunOptions run_options;
+      run_options.progress = o.progress;
+      const std::string progress_label = "level " + label + " %";
+      run_options.label = progress_label.c_str();
+      const auto summary = run_for(sim, L.duration, record, run_options);
+      history.end_level();
+      model.base_velocity = [v = Vec3(table_velocity * axis)](double) { return v; };  // table_motion ends here
+      L.steps = summary.steps;
+      L.wall_seconds = summary.wall_seconds;
+      L.interrupted = summary.interrupted;
+      L.simulated = sim.time() - table_motion.start();
+      L.peaks = history.peaks();
+      for (std::size_t p = 0; p < history.points(); ++p) L.residual_displacement.push_back(history.last_displacement(p));
+      L.damage = damage_census(sim, model);
+      L.energy = sim.energy();
+      L.energy_at_start = energy0;
+      r.levels.push_back(L);
+      if (!o.out_dir.empty()) {
+        detail::write_level_outputs(o.out_dir, label, sim, model, vault, settled_position);
+        detail::write_report(o.out_dir, r);
+      }
+      if (summary.interrupted) {
+        r.interrupted = true;
+        break;
+      }
+    }
+  });
+  r.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
+  if (!o.out_dir.empty()) detail::write_report(o.out_dir, r);
+  return r;
+}
+
+}  // namespace blockdem::analysis

@@ -1,0 +1,117 @@
+#pragma once
+// What a cross-vault study runs (paper Sect. 5, 6.1): the model, the input record and its levels, the damping
+// scheme, the timestep, settling and the outputs. Every field is checked by validate(), whose messages name the
+// program option (--levels, ...) and the allowed range.
+
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "blockdem/core/error.hpp"
+#include "blockdem/models/cross_vault.hpp"
+#include "blockdem/motion/baseline.hpp"
+#include "blockdem/motion/readers.hpp"
+#include "blockdem/motion/record.hpp"
+
+namespace blockdem::analysis {
+
+/// The viscous damping of the dynamic run (paper Sect. 4): noDamp, MassProp, stiffness-proportional, Rayleigh, Maxwell.
+enum class DampingScheme { none, mass, stiffness, rayleigh, maxwell };
+inline constexpr const char* name(DampingScheme s) {
+  switch (s) {
+    case DampingScheme::none: return "none";
+    case DampingScheme::mass: return "mass";
+    case DampingScheme::stiffness: return "stiffness";
+    case DampingScheme::rayleigh: return "rayleigh";
+    case DampingScheme::maxwell: return "maxwell";
+  }
+  return "?";
+}
+
+/// How the record is cut before it is applied: the first seconds (Sect. 5: 15 s) or the pulse support found by the
+/// wavelet truncation (Sect. 6.1.2).
+enum class Truncation { window, wavelet };
+
+inline constexpr int max_study_branches = 4;  // Maxwell<1> .. Maxwell<4> are compiled into the study
+
+struct VaultStudyOptions {
+  models::CrossVaultOptions vault;
+
+  // Input (Sect. 2, 5).
+  std::string record_path;                 // empty: the built-in synthetic AQA75 stand-in
+  std::optional<motion::Record> record;    // a record given in code (overrides record_path)
+  motion::ReadOptions read;                // units and dt for files that do not state them
+  char axis = 'y';                         // the table moves along x or y (the vault's longitudinal axis is y)
+  double record_level = 75;                // %, the share of the original record that the input represents
+  std::vector<double> levels{25, 50, 75};  // %, run one after another on one state (damage accumulates)
+  Truncation truncation = Truncation::window;
+  double window_start = 0, window_end = 15;  // s, on the record's clock
+  std::string baseline = "mean,highpass:0.1";  // motion::parse_baseline grammar
+  double rest = 1.0;                       // s of free motion after each level (table at rest)
+
+  // Damping (Sect. 4). zeta: 0 means the scheme's default (maxwell 3 %, mass 4 %, stiffness and rayleigh 3 %).
+  DampingScheme damping = DampingScheme::maxwell;
+  double zeta = 0;
+  double frequency_hz = 7.5;               // mass: centre of MassProp; stiffness: where zeta is met
+  double lower_hz = 1, upper_hz = 40;      // maxwell: the band; rayleigh: the two frequencies
+  int branches = 3;                        // maxwell
+
+  // Timestep (eq. 1-3, 11, 20) and partial density scaling (Sect. 3.2).
+  double target_dt = 0;                    // s; 0: the largest timestep whose density scaling adds at most
+                                           // default_mass_increase_percent of the free mass
+  double default_mass_increase_percent = 5.0;  // the paper's model: 5.92 % (Sect. 3.2)
+  double max_mass_increase_percent = 20;   // a target that needs more is refused
+
+  // Settling under gravity (static, local damping, static mass scaling).
+  double settle_tolerance = 1e-5;          // unbalanced-force ratio
+  long long settle_max_steps = 200000;
+
+  // The first natural frequency and damping ratio of the settled vault, from a free decay (before the levels).
+  bool free_vibration = false;
+
+  // Outputs.
+  std::string out_dir;                     // empty: nothing written
+  double history_dt = 0.005;               // s
+  double snapshots_every = 0;              // s; 0: no time series of the blocks
+  bool progress = true;                    // a progress line on stderr
+
+  double scheme_zeta() const {
+    if (zeta > 0) return zeta;
+    return damping == DampingScheme::mass ? 0.04 : 0.03;
+  }
+
+  void validate() const {
+    auto check = [](bool ok, const std::string& what) {
+      if (!ok) throw InvalidArgument("cross vault study: " + what);
+    };
+    auto num = [](double v) { return models::detail::num(v); };
+    vault.validate();
+    check(axis == 'x' || axis == 'y', std::string("--axis must be x or y, got ") + axis);
+    check(record_level > 0 && record_level <= 1000, "--record-level must be in (0, 1000] %, got " + num(record_level));
+    check(!levels.empty(), "--levels needs at least one level");
+    for (double l : levels) check(l > 0 && l <= 1000 && std::isfinite(l), "--levels: each level must be in (0, 1000] %, got " + num(l));
+    if (truncation == Truncation::window)
+      check(window_start >= 0 && window_end > window_start && std::isfinite(window_end),
+            "--window: needs 0 <= start < end (s), got " + num(window_start) + " " + num(window_end));
+    (void)motion::parse_baseline(baseline);
+    check(rest >= 0 && rest <= 600, "--rest must be in [0, 600] s, got " + num(rest));
+    check(zeta >= 0 && zeta < 0.5, "--zeta must be in (0, 0.5) (0: the scheme's default), got " + num(zeta));
+    check(frequency_hz > 0 && frequency_hz <= 1000, "--frequency must be in (0, 1000] Hz, got " + num(frequency_hz));
+    check(lower_hz > 0 && upper_hz > lower_hz && upper_hz <= 1000,
+          "--band must satisfy 0 < f_lb < f_ub <= 1000 Hz, got " + num(lower_hz) + " " + num(upper_hz));
+    check(branches >= 1 && branches <= max_study_branches,
+          "--branches must be in 1.." + std::to_string(max_study_branches) + ", got " + std::to_string(branches));
+    check(target_dt >= 0 && target_dt < 1e-2 && std::isfinite(target_dt), "--target-dt must be in [0, 0.01) s (0: automatic), got " + num(target_dt));
+    check(default_mass_increase_percent >= 0 && default_mass_increase_percent <= max_mass_increase_percent,
+          "the automatic density scaling must add in [0, --max-mass-increase] % of the mass");
+    check(max_mass_increase_percent >= 0 && max_mass_increase_percent <= 1000,
+          "--max-mass-increase must be in [0, 1000] %, got " + num(max_mass_increase_percent));
+    check(settle_tolerance > 0 && settle_tolerance < 1, "--settle-tolerance must be in (0, 1), got " + num(settle_tolerance));
+    check(settle_max_steps >= 10, "--settle-steps must be >= 10, got " + std::to_string(settle_max_steps));
+    check(history_dt >= 1e-5 && history_dt <= 1, "--history-dt must be in [1e-5, 1] s, got " + num(history_dt));
+    check(snapshots_every >= 0 && snapshots_every <= 100, "--snapshots-every must be in [0, 100] s, got " + num(snapshots_every));
+  }
+};
+
+}  // namespace blockdem::analysis

@@ -1,0 +1,186 @@
+#!/usr/bin/env python3
+"""Plots one or several runs of `cross_vault run` (for example one per damping scheme) side by side, like the paper's
+figures: the OC1-y displacement per level (Fig. 14), OC2-y and OC4-y (Fig. 16), the ACC18-y acceleration (Fig. 18),
+the damage of the vault's joints per level in plan view (Fig. 17) and the timing table (Table 4).
+
+    python3 scripts/plot_vault.py RUN_DIR [RUN_DIR ...] [--out DIR] [--measured-level L FILE.csv]
+
+Writes into --out (default: the first RUN_DIR) displacement_oc1.png, displacement_oc2_oc4.png, acceleration_acc18.png,
+damage_map.png and timing.png. Runs on the built-in synthetic record say so in every title.
+
+Needs numpy and matplotlib (Debian: python3-numpy python3-matplotlib; scripts/install-deps.sh --plots)."""
+import argparse
+import json
+import os
+import sys
+
+try:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+except ImportError as error:
+    sys.exit(f"plot_vault.py: {error}; install python3-numpy and python3-matplotlib "
+             "(scripts/install-deps.sh --plots)")
+
+COLOURS = {"none": "tab:green", "mass": "tab:blue", "maxwell": "tab:red", "stiffness": "tab:purple", "rayleigh": "tab:orange"}
+NAMES = {"none": "noDamp", "mass": "MassProp", "maxwell": "Maxwell", "stiffness": "StiffProp", "rayleigh": "Rayleigh"}
+
+
+class Run:
+    def __init__(self, folder):
+        self.folder = folder
+        path = os.path.join(folder, "report.json")
+        try:
+            with open(path) as f:
+                self.report = json.load(f)
+        except (OSError, ValueError) as error:
+            sys.exit(f"plot_vault.py: cannot read {path}: {error}")
+        self.scheme = self.report["damping"]["scheme"]
+        self.label = NAMES.get(self.scheme, self.scheme)
+        self.colour = COLOURS.get(self.scheme)
+        self.synthetic = self.report["input"]["synthetic"]
+        self.levels = [level["level_percent"] for level in self.report["levels"]]
+
+    def level_name(self, level):
+        return f"{level:g}"
+
+    def history(self, level):
+        path = os.path.join(self.folder, f"history_{self.level_name(level)}.csv")
+        try:
+            with open(path) as f:
+                header = f.readline().strip().split(",")
+            data = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2)
+        except (OSError, ValueError) as error:
+            sys.exit(f"plot_vault.py: cannot read {path}: {error}")
+        return {name: data[:, i] for i, name in enumerate(header)}
+
+    def contacts(self, level):
+        path = os.path.join(self.folder, f"contacts_{self.level_name(level)}.csv")
+        try:
+            with open(path) as f:
+                header = f.readline().strip().split(",")
+            rows = [line.strip().split(",") for line in open(path).readlines()[1:]]
+        except OSError as error:
+            sys.exit(f"plot_vault.py: cannot read {path}: {error}")
+        columns = {name: [row[i] for row in rows] for i, name in enumerate(header)}
+        numeric = {k: np.array(v, dtype=float) for k, v in columns.items() if k not in ("component_a", "component_b")}
+        numeric["component_a"] = np.array(columns["component_a"])
+        numeric["component_b"] = np.array(columns["component_b"])
+        return numeric
+
+
+def input_note(runs):
+    notes = {("SYNTHETIC AQA75 stand-in, not the AQA recording" if r.synthetic else r.report["input"]["record"]) for r in runs}
+    return "; ".join(sorted(notes))
+
+
+def all_levels(runs):
+    levels = []
+    for r in runs:
+        for level in r.levels:
+            if level not in levels:
+                levels.append(level)
+    return levels
+
+
+def plot_channels(runs, channels, ylabel, scale, path, title):
+    levels = all_levels(runs)
+    fig, axes = plt.subplots(len(channels), len(levels), figsize=(4.5 * len(levels), 2.8 * len(channels)), squeeze=False)
+    for row, channel in enumerate(channels):
+        for col, level in enumerate(levels):
+            ax = axes[row][col]
+            for r in runs:
+                if level not in r.levels:
+                    continue
+                h = r.history(level)
+                if channel not in h:
+                    continue
+                ax.plot(h["time"], scale * h[channel], lw=0.8, color=r.colour, label=r.label)
+            ax.set_title(f"{channel.replace('_u', '-').replace('_a', '-')}, level {level:g} %", fontsize=9)
+            ax.grid(alpha=0.3)
+            if col == 0:
+                ax.set_ylabel(ylabel)
+            if row == len(channels) - 1:
+                ax.set_xlabel("time [s]")
+    axes[0][0].legend(fontsize=8)
+    fig.suptitle(f"{title}\n({input_note(runs)})", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    print(path)
+
+
+def plot_damage(runs, path):
+    levels = all_levels(runs)
+    fig, axes = plt.subplots(len(runs), len(levels), figsize=(4.6 * len(levels) + 1.2, 4.6 * len(runs) + 0.8), squeeze=False)
+    for row, r in enumerate(runs):
+        for col, level in enumerate(levels):
+            ax = axes[row][col]
+            ax.set_aspect("equal")
+            ax.set_xticks([])
+            ax.set_yticks([])
+            if level not in r.levels:
+                ax.set_visible(False)
+                continue
+            c = r.contacts(level)
+            masonry = np.isin(c["component_a"], ["vault", "infill"]) & np.isin(c["component_b"], ["vault", "infill"])
+            order = np.argsort(c["z"][masonry])  # the extrados (highest) drawn last, as seen from above
+            x, y, d = c["x"][masonry][order], c["y"][masonry][order], c["damage"][masonry][order]
+            intact = d <= 0
+            ax.scatter(x[intact], y[intact], s=0.3, color="0.85", linewidths=0)
+            sc = ax.scatter(x[~intact], y[~intact], c=d[~intact], s=3, linewidths=0, cmap="plasma_r", vmin=0, vmax=1)
+            damaged = int(np.count_nonzero(d > 0))
+            ax.set_title(f"{r.label}, level {level:g} %: {damaged} damaged CPs", fontsize=9)
+    fig.colorbar(sc, ax=axes, shrink=0.6, label="joint damage d")
+    fig.suptitle(f"Joint damage, vault and infill, plan view (x east, y north)\n({input_note(runs)})", fontsize=9)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    print(path)
+
+
+def plot_timing(runs, path):
+    levels = all_levels(runs)
+    fig, ax = plt.subplots(figsize=(7, 0.6 + 0.45 * (len(runs) + 1)))
+    ax.axis("off")
+    header = ["Model", "dt [s]"] + [f"{level:g} % [min]" for level in levels] + ["Total [h]", "mass added [%]"]
+    rows = []
+    for r in runs:
+        minutes = {level["level_percent"]: level["wall_seconds"] / 60 for level in r.report["levels"]}
+        total = sum(minutes.values()) / 60
+        rows.append([r.label, f"{r.report['timestep']['dt_s']:.3e}"] +
+                    [f"{minutes[level]:.2f}" if level in minutes else "-" for level in levels] +
+                    [f"{total:.3f}", f"{r.report['timestep']['density_scaling_mass_increase_percent']:.2f}"])
+    table = ax.table(cellText=rows, colLabels=header, loc="center")
+    table.auto_set_font_size(False)
+    table.set_fontsize(9)
+    table.scale(1, 1.4)
+    ax.set_title("Wall time of the incremental analysis (the paper's Table 4)", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+    print(path)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("runs", nargs="+", help="output folders of cross_vault run")
+    parser.add_argument("--out", help="folder for the PNGs (default: the first run's)")
+    args = parser.parse_args()
+    runs = [Run(folder) for folder in args.runs]
+    if not any(r.levels for r in runs):
+        sys.exit("plot_vault.py: no run has a finished level yet")
+    out = args.out or args.runs[0]
+    os.makedirs(out, exist_ok=True)
+    plot_channels(runs, ["OC1_uy"], "displacement [mm]", 1e3, os.path.join(out, "displacement_oc1.png"),
+                  "Crown displacement OC1-y relative to the table (Fig. 14)")
+    plot_channels(runs, ["OC2_uy", "OC4_uy"], "displacement [mm]", 1e3, os.path.join(out, "displacement_oc2_oc4.png"),
+                  "Displacements OC2-y and OC4-y (Fig. 16)")
+    plot_channels(runs, ["ACC18_ay"], "acceleration [m/s$^2$]", 1.0, os.path.join(out, "acceleration_acc18.png"),
+                  "Crown acceleration ACC18-y, centred differences of velocity (Fig. 18)")
+    plot_damage(runs, os.path.join(out, "damage_map.png"))
+    plot_timing(runs, os.path.join(out, "timing.png"))
+
+
+if __name__ == "__main__":
+    main()
