@@ -239,27 +239,19 @@ int main(int argc, char** argv) {
   app.add_option("--max-cp-area", contacts.max_contact_point_area, "largest area per contact point, m^2 (0: CPs at the corners)")
       ->capture_default_str();
   if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
-  if (compare_app->parsed()) {
-    try {
-      return compare.run();
-    } catch (const InvalidArgument& e) {
-      std::fprintf(stderr, "cross_vault compare: error: %s\n", e.what());
-      return programs::exit_bad_input;
-    } catch (const InputError& e) {
-      std::fprintf(stderr, "cross_vault compare: error: %s\n", e.what());
-      return programs::exit_bad_input;
-    }
-  }
-  if (run_app->parsed()) {
+  if (compare_app->parsed() || run_app->parsed()) {
+    const char* command = compare_app->parsed() ? "compare" : "run";
     run.study.vault = o;
+    auto bad_input = [&](const std::exception& e) {
+      std::fprintf(stderr, "cross_vault %s: error: %s\n", command, e.what());
+      return programs::exit_bad_input;
+    };
     try {
-      return run_study(run);
+      return compare_app->parsed() ? compare.run() : run_study(run);
     } catch (const InvalidArgument& e) {
-      std::fprintf(stderr, "cross_vault run: error: %s\n", e.what());
-      return programs::exit_bad_input;
-    } catch (const InputError& e) {
-      std::fprintf(stderr, "cross_vault run: error: %s\n", e.what());
-      return programs::exit_bad_input;
+      return bad_input(e);
+    } catch (const InputError& e) {  // a malformed record or table
+      return bad_input(e);
     }
   }
   if (!geometry_only) {
