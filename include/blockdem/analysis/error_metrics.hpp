@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
@@ -13,10 +12,10 @@
 #include <span>
 #include <string>
 #include <string_view>
-#include <system_error>
 #include <vector>
 
 #include "blockdem/core/error.hpp"
+#include "blockdem/motion/readers.hpp"
 
 namespace blockdem::analysis {
 
@@ -231,12 +230,7 @@ struct Table {
 
 namespace detail {
 
-inline std::string_view trim(std::string_view s) {
-  constexpr std::string_view blanks = " \t\r\n";
-  const auto first = s.find_first_not_of(blanks);
-  if (first == std::string_view::npos) return {};
-  return s.substr(first, s.find_last_not_of(blanks) - first + 1);
-}
+using motion::detail::trim;  // the record readers' tokenising serves the tables too
 
 /// The comma-separated fields of a line, trimmed, into `out` (reused between lines).
 inline void split_fields(std::string_view line, std::vector<std::string_view>& out) {
@@ -308,14 +302,11 @@ inline Table read_csv_table(const std::string& path) {
       throw InvalidArgument(where(line) + std::to_string(fields.size()) + " fields, expected " +
                             std::to_string(table.columns.size()) + " (one per header column)");
     for (std::size_t c = 0; c < fields.size(); ++c) {
-      std::string_view f = fields[c];
-      if (!f.empty() && f.front() == '+') f.remove_prefix(1);
-      double value = 0;
-      const auto [end, ec] = std::from_chars(f.data(), f.data() + f.size(), value);
-      if (f.empty() || ec != std::errc() || end != f.data() + f.size() || !std::isfinite(value))
+      const auto value = motion::detail::to_number(fields[c]);
+      if (!value || !std::isfinite(*value))
         throw InvalidArgument(where(line) + "column '" + table.columns[c] + "': '" + std::string(fields[c]) +
                               "' is not a finite number");
-      table.values[c].push_back(value);
+      table.values[c].push_back(*value);
     }
     const auto& time = table.values.front();
     if (time.size() > 1 && !(time.back() > time[time.size() - 2]))
