@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
@@ -38,12 +39,14 @@ struct RunCommand {
   std::string units, truncation = "window", axis = "y";
   std::vector<double> window{0, 15}, band{1, 40};
   bool quiet = false, json = false;
+  CLI::Option* out = nullptr;
 
   void add_to(CLI::App& app) {
     using blockdem::analysis::DampingScheme;
     auto& o = study;
     o.out_dir = "vault_run";
-    app.add_option("--out", o.out_dir, "output folder (created if missing)")->capture_default_str();
+    out = app.add_option("--out", o.out_dir, "output folder (created if missing; with --resume: the checkpoint's folder)")
+              ->capture_default_str();
     app.add_option("--record", o.record_path, "acceleration record (PEER .AT2, ESM ASCII, text); default: the built-in synthetic AQA75 stand-in");
     app.add_option("--units", units, "units of the record's samples: g, m/s2 or cm/s2 (default: from its header)");
     app.add_option("--axis", axis, "the table moves along x or y (the vault's longitudinal axis)")->capture_default_str();
@@ -78,6 +81,14 @@ struct RunCommand {
         ->capture_default_str();
     app.add_flag("--free-vibration", o.free_vibration,
                  "first measure the settled vault's first frequency and damping ratio in free decay (into report.json)");
+    app.add_option("--checkpoint-minutes", o.checkpoint_minutes,
+                   "also write OUT/checkpoint.bin every this many minutes of wall time (it is always written at the end of "
+                   "each level and when the run is stopped), [0, 1e6]")->capture_default_str();
+    app.add_option("--resume", o.resume, "continue the run that wrote this checkpoint, with the same options; the result is "
+                                         "bitwise that of the run not stopped");
+    app.add_option("--stop-after-steps", o.stop_after_steps,
+                   "stop with a checkpoint once the dynamic run has taken this many steps in all (to split a run over batch jobs; 0: never)")
+        ->capture_default_str();
     app.add_flag("--quiet", quiet, "no progress line");
     app.add_flag("--json", json, "print report.json at the end");
   }
@@ -94,6 +105,10 @@ struct RunCommand {
     o.lower_hz = band[0];
     o.upper_hz = band[1];
     o.progress = !quiet;
+    if (!o.resume.empty() && out->count() == 0) {
+      const auto folder = std::filesystem::path(o.resume).parent_path();
+      o.out_dir = folder.empty() ? std::string(".") : folder.string();
+    }
   }
 };
 
@@ -193,6 +208,9 @@ int run_study(RunCommand& command) {
   fmt::print("\n{}", analysis::table4(r));
   fmt::print("outputs in {}/ (report.json, history_<level>.csv, damage_<level>.vtu, contacts_<level>.vtu/.csv); plots: "
              "python3 scripts/plot_vault.py {}\n", command.study.out_dir, command.study.out_dir);
+  if (r.interrupted)
+    fmt::print("stopped early; continue with the same options and --resume {}/{}\n", command.study.out_dir,
+               analysis::study_checkpoint_file);
   return r.interrupted ? 1 : 0;
 }
 

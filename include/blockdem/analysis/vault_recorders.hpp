@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 #include <string>
@@ -15,6 +17,7 @@
 #include "blockdem/contact/softening.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/types.hpp"
+#include "blockdem/io/checkpoint.hpp"
 #include "blockdem/model/model.hpp"
 #include "blockdem/models/cross_vault.hpp"
 
@@ -25,6 +28,17 @@ struct ChannelPeaks {
   std::string name;  // <point>_<ux|uy|uz|ax|ay|az>
   double max = -std::numeric_limits<double>::infinity();
   double min = std::numeric_limits<double>::infinity();
+
+  void save_state(io::CheckpointWriter& w) const { visit_state(*this, w); }
+  void load_state(io::CheckpointReader& r) { visit_state(*this, r); }
+
+ private:
+  template <class Self, class Archive>
+  static void visit_state(Self& s, Archive& ar) {
+    ar("channel name", s.name);
+    ar("channel maximum", s.max);
+    ar("channel minimum", s.min);
+  }
 };
 
 /// Histories of the monitor points over one level. Columns: time (s from the start of the level), then per point
@@ -53,6 +67,7 @@ class MonitorHistory {
     table_reference_ = model.bodies.position[table_];
     samples_.clear();
     written_ = 0;
+    bytes_ = 0;
     peaks_.clear();
     for (const auto& n : names_)
       for (const char* q : {"ux", "uy", "uz", "ax", "ay", "az"}) peaks_.push_back({n + "_" + q});
@@ -61,9 +76,10 @@ class MonitorHistory {
       out_.open(path);
       if (!out_) throw InvalidArgument("cannot open '" + path + "' for writing");
       path_ = path;
-      out_ << "time";
-      for (const auto& p : peaks_) out_ << ',' << p.name;
-      out_ << '\n';
+      std::string header = "time";
+      for (const auto& p : peaks_) (header += ',') += p.name;
+      header += '\n';
+      put(header);
     }
   }
 
@@ -95,6 +111,33 @@ class MonitorHistory {
     }
   }
 
+  /// The state of the level in progress, for a checkpoint: the references, the last samples, the peaks and how
+  /// many bytes of the CSV were written (each row is flushed as it is written).
+  void save_state(io::CheckpointWriter& w) const { visit_state(*this, w); }
+  /// The reverse of save_state(); then resume_file() reopens the CSV.
+  void load_state(io::CheckpointReader& r) { visit_state(*this, r); }
+
+  /// Continues the level's CSV at `path` (may be empty: none): cut back to what the checkpoint had written (a run
+  /// that went on after its checkpoint wrote more), then appended to. Throws InvalidArgument if the file is missing
+  /// or shorter than that.
+  void resume_file(const std::string& path) {
+    out_ = std::ofstream();
+    if (path.empty()) return;
+    std::error_code error;
+    const auto size = std::filesystem::file_size(path, error);
+    if (error || size < bytes_)
+      throw InvalidArgument("--resume: the history '" + path + "' " +
+                            (error ? "cannot be read (" + error.message() + ")"
+                                   : "holds " + std::to_string(size) + " bytes, fewer than the " + std::to_string(bytes_) +
+                                         " the checkpoint wrote") +
+                            "; resume into the output folder of the run that wrote the checkpoint");
+    std::filesystem::resize_file(path, bytes_, error);
+    if (error) throw InvalidArgument("--resume: cannot cut '" + path + "' back to the checkpoint: " + error.message());
+    out_.open(path, std::ios::app);
+    if (!out_) throw InvalidArgument("cannot open '" + path + "' for writing");
+    path_ = path;
+  }
+
   const std::vector<ChannelPeaks>& peaks() const { return peaks_; }
   long long rows() const { return written_; }
   /// Displacement relative to the table at the last sample, m.
@@ -104,7 +147,34 @@ class MonitorHistory {
   struct Sample {
     double time = 0;
     std::vector<Vec3> displacement, velocity;
+
+    void save_state(io::CheckpointWriter& w) const { visit_state(*this, w); }
+    void load_state(io::CheckpointReader& r) { visit_state(*this, r); }
+    template <class Self, class Archive>
+    static void visit_state(Self& s, Archive& ar) {
+      ar("sample time", s.time);
+      ar("sample displacements", s.displacement);
+      ar("sample velocities", s.velocity);
+    }
   };
+
+  template <class Self, class Archive>
+  static void visit_state(Self& s, Archive& ar) {
+    ar.check("monitor points", s.names_);
+    ar.same_size("monitor points in their blocks", s.body_point_);  // from the settled vault, not the one built anew
+    ar("level start", s.time0_);
+    ar("reference positions", s.reference_);
+    ar("table reference", s.table_reference_);
+    ar("last samples", s.samples_);
+    ar("peaks", s.peaks_);
+    ar("rows written", s.written_);
+    ar("bytes written", s.bytes_);
+  }
+
+  void put(const std::string& text) {
+    out_ << text;
+    bytes_ += text.size();
+  }
 
   Vec3 world(const model::Model& model, std::size_t p) const { return model.bodies.to_world(block_[p], body_point_[p]); }
 
@@ -114,10 +184,9 @@ class MonitorHistory {
     const auto& s = samples_[k];
     const double span = samples_[hi].time - samples_[lo].time;
     char buffer[40];
-    if (out_.is_open()) {
-      std::snprintf(buffer, sizeof buffer, "%.6f", s.time);
-      out_ << buffer;
-    }
+    std::string row;
+    std::snprintf(buffer, sizeof buffer, "%.6f", s.time);
+    row += buffer;
     for (std::size_t p = 0; p < points(); ++p) {
       const Vec3 a = span > 0 ? Vec3((samples_[hi].velocity[p] - samples_[lo].velocity[p]) / span) : Vec3::Zero();
       for (int c = 0; c < 6; ++c) {
@@ -125,13 +194,15 @@ class MonitorHistory {
         auto& peak = peaks_[6 * p + static_cast<std::size_t>(c)];
         peak.max = std::max(peak.max, value);
         peak.min = std::min(peak.min, value);
-        if (out_.is_open()) {
-          std::snprintf(buffer, sizeof buffer, ",%.9g", value);
-          out_ << buffer;
-        }
+        std::snprintf(buffer, sizeof buffer, ",%.9g", value);
+        row += buffer;
       }
     }
-    if (out_.is_open()) out_ << '\n' << std::flush;
+    row += '\n';
+    if (out_.is_open()) {
+      put(row);
+      out_.flush();
+    }
     ++written_;
   }
 
@@ -144,6 +215,7 @@ class MonitorHistory {
   std::vector<Sample> samples_;
   std::vector<ChannelPeaks> peaks_;
   long long written_ = 0;
+  std::uint64_t bytes_ = 0;  // of the CSV
   std::ofstream out_;
   std::string path_;
 };

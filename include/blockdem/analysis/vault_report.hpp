@@ -38,6 +38,26 @@ struct LevelResult {
   EnergyReport energy_at_start;     // the same at the start of the level
 
   double steps_per_second() const { return wall_seconds > 0 ? steps / wall_seconds : 0; }
+
+  void save_state(io::CheckpointWriter& w) const { visit_state(*this, w); }
+  void load_state(io::CheckpointReader& r) { visit_state(*this, r); }
+
+ private:
+  template <class Self, class Archive>
+  static void visit_state(Self& s, Archive& ar) {
+    ar("level", s.level);
+    ar("level duration", s.duration);
+    ar("simulated", s.simulated);
+    ar("level steps", s.steps);
+    ar("level wall time", s.wall_seconds);
+    ar("level interrupted", s.interrupted);
+    ar("final table velocity", s.final_table_velocity);
+    ar("peaks", s.peaks);
+    ar("residual displacements", s.residual_displacement);
+    ar("damage census", s.damage);
+    ar("energy", s.energy);
+    ar("energy at the start", s.energy_at_start);
+  }
 };
 
 struct SettlingResult {
@@ -55,6 +75,22 @@ struct FreeVibrationResult {
   double pulse_velocity = 0, pulse_duration = 0;  // m/s, s
   std::string note;                   // why it was not measured
   std::vector<double> time, response; // s from the pulse, m: OC1 along the axis relative to the table
+
+  void save_state(io::CheckpointWriter& w) const { visit_state(*this, w); }
+  void load_state(io::CheckpointReader& r) { visit_state(*this, r); }
+
+ private:
+  template <class Self, class Archive>
+  static void visit_state(Self& s, Archive& ar) {
+    ar("free vibration measured", s.measured);
+    ar("free decay", s.decay);
+    ar("expected damping ratio", s.expected_damping_ratio);
+    ar("pulse velocity", s.pulse_velocity);
+    ar("pulse duration", s.pulse_duration);
+    ar("free vibration note", s.note);
+    ar("free vibration times", s.time);
+    ar("free vibration response", s.response);
+  }
 };
 
 struct VaultStudyResult {
@@ -120,8 +156,9 @@ inline std::string table4(const VaultStudyResult& r) {
 
 namespace detail {
 
-/// Creates the output folder and checks that a file can be written in it.
-inline void prepare_output_folder(const std::string& dir) {
+/// Creates the output folder and checks that a file can be written in it; a fresh run (not `resuming`) removes the
+/// report of an earlier one.
+inline void prepare_output_folder(const std::string& dir, bool resuming = false) {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
   if (error || !std::filesystem::is_directory(dir))
@@ -133,7 +170,7 @@ inline void prepare_output_folder(const std::string& dir) {
   }
   std::filesystem::remove(probe, error);
   // A report left by an earlier run would look like this run's until this one writes its own.
-  std::filesystem::remove(dir + "/report.json", error);
+  if (!resuming) std::filesystem::remove(dir + "/report.json", error);
 }
 
 inline io::JsonObject energy_json(const EnergyReport& e) {
@@ -309,6 +346,32 @@ void write_level_outputs(const std::string& dir, const std::string& label, const
 class SnapshotSeries {
  public:
   explicit SnapshotSeries(std::string dir) : dir_(std::move(dir)) {}
+
+  /// The frames written so far, for a checkpoint (a resumed run rewrites the later ones and the collection).
+  void save_state(io::CheckpointWriter& w) const {
+    w.write(static_cast<std::uint64_t>(frames_.size()));
+    for (const auto& [time, file] : frames_) {
+      w.write(time);
+      w.write(file);
+    }
+    w.write(static_cast<std::uint64_t>(frames_in_level_.size()));
+    for (const auto& [label, count] : frames_in_level_) {
+      w.write(label);
+      w.write(count);
+    }
+  }
+  void load_state(io::CheckpointReader& r) {
+    frames_.resize(static_cast<std::size_t>(r.read_value<std::uint64_t>("snapshot frames")));
+    for (auto& [time, file] : frames_) {
+      r.read(time, "snapshot time");
+      r.read(file, "snapshot file");
+    }
+    frames_in_level_.clear();
+    for (auto n = r.read_value<std::uint64_t>("snapshot levels"); n > 0; --n) {
+      auto label = r.read_value<std::string>("snapshot level");
+      frames_in_level_[label] = r.read_value<int>("snapshot count");
+    }
+  }
 
   void write(const std::string& label, double time, const model::Model& model, const models::CrossVault& vault,
              const std::vector<Vec3>& reference) {

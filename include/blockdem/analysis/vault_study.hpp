@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "blockdem/analysis/free_decay.hpp"
+#include "blockdem/analysis/vault_checkpoint.hpp"
 #include "blockdem/analysis/vault_recorders.hpp"
 #include "blockdem/analysis/vault_report.hpp"
 #include "blockdem/analysis/vault_study_options.hpp"
@@ -203,11 +204,15 @@ decltype(auto) with_damping_policy(const VaultStudyOptions& o, std::string& desc
 /// The vault of the options, settled under gravity and handed to f(sim, model, vault, table_block, policy) as a
 /// simulation with the options' damping policy at the dynamic timestep (after partial density scaling). Fills the
 /// model, settling, damping and timestep parts of `r`; with o.out_dir set, writes report.json once settled. Returns
-/// without calling f if interrupted while settling.
-template <class F>
-void with_settled_vault(const VaultStudyOptions& o, VaultStudyResult& r, F&& f) {
+/// without calling f if interrupted while settling. built(model, vault) sees the model as built, before settling.
+/// With o.resume set, f receives the simulation unsettled and unscaled, for the caller to load a checkpoint into.
+template <class F, class Built = void (*)(const model::Model&, const models::CrossVault&)>
+void with_settled_vault(const VaultStudyOptions& o, VaultStudyResult& r, F&& f,
+                        Built built = [](const model::Model&, const models::CrossVault&) {}) {
+  const bool resuming = !o.resume.empty();
   const auto vault = models::make_cross_vault(o.vault);
   model::Model model = detail::vault_model(vault);
+  built(model, vault);
   std::size_t table = 0;
   while (table < vault.blocks.size() && vault.blocks[table].component != models::Component::slab) ++table;
   r.model.blocks = model.bodies.size();
@@ -251,15 +256,17 @@ void with_settled_vault(const VaultStudyOptions& o, VaultStudyResult& r, F&& f) 
                               models::detail::num(unscaled) + " s");
     }
 
-    detail::settle(settle, std::max(unscaled, target), o, r.settling);
-    if (!o.out_dir.empty()) detail::write_report(o.out_dir, r);
-    if (interrupted()) {
-      r.interrupted = true;
-      return;
+    if (!resuming) {
+      detail::settle(settle, std::max(unscaled, target), o, r.settling);
+      if (!o.out_dir.empty()) detail::write_report(o.out_dir, r);
+      if (interrupted()) {
+        r.interrupted = true;
+        return;
+      }
     }
 
     Dynamic sim(settle, policy);
-    if (target > sim.timestep()) {
+    if (!resuming && target > sim.timestep()) {
       const std::vector<double> real_mass = model.bodies.mass;
       r.timestep.scaling = sim.scale_density_to(target);
       for (std::size_t i = 0; i < model.bodies.size(); ++i)
@@ -283,6 +290,7 @@ void with_settled_vault(const VaultStudyOptions& o, VaultStudyResult& r, F&& f) 
 inline FreeVibrationResult measure_free_vibration(VaultStudyOptions o, double duration = 1.0, double pulse_velocity = 1e-3,
                                                   double pulse_duration = 0.05) {
   o.out_dir.clear();
+  o.resume.clear();
   o.free_vibration = false;
   VaultStudyResult scratch;
   FreeVibrationResult fv;
@@ -329,15 +337,21 @@ inline FreeVibrationResult measure_free_vibration(VaultStudyOptions o, double du
   return fv;
 }
 
-/// Runs the study. Writes into o.out_dir (if set) as it goes; stops cleanly after the current step on SIGINT/SIGTERM
-/// once stop_on_interrupt() was called (the result says so, and what was written stays complete).
+/// Runs the study. Writes into o.out_dir (if set) as it goes, with a checkpoint (vault_checkpoint.hpp) at the end of
+/// each level, every o.checkpoint_minutes and when it stops early; with o.resume set, continues from a checkpoint
+/// bitwise as the run that wrote it would have gone on. Stops cleanly after the current step on SIGINT/SIGTERM once
+/// stop_on_interrupt() was called, or after o.stop_after_steps dynamic steps (the result says so, and what was
+/// written stays complete).
 inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   o.validate();
   VaultStudyResult r;
   r.options = o;
-  if (!o.out_dir.empty()) detail::prepare_output_folder(o.out_dir);
+  const bool resuming = !o.resume.empty();
+  // A checkpoint that cannot be used is refused before any work: its header now, its model and checksum below.
+  if (resuming) (void)io::read_checkpoint_header(o.resume);
+  if (!o.out_dir.empty()) detail::prepare_output_folder(o.out_dir, resuming);
 
   const motion::Record cut = detail::input_record(o, r.input.cut);
   r.input.name = cut.name;
@@ -350,69 +364,134 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
     r.input.pgv = peaks.pgv;
     r.input.pgd = peaks.pgd;
   }
-  if (o.free_vibration) {
+  if (o.free_vibration && !resuming) {
     r.free_vibration = measure_free_vibration(o);
     if (!o.out_dir.empty()) detail::write_free_vibration(o.out_dir, r.free_vibration);
   }
 
+  std::uint64_t hash = 0;
+  auto built = [&](const model::Model& model, const models::CrossVault& vault) { hash = study_hash(o, model, vault, cut); };
   with_settled_vault(o, r, [&](auto& sim, model::Model& model, const models::CrossVault& vault, std::size_t table, const auto&) {
     MonitorHistory history(model, vault.monitor_points, table);
     r.monitor_points = history.names();
     SnapshotSeries snapshots(o.out_dir);
-    const auto settled_position = model.bodies.position;
+    std::vector<Vec3> settled_position = model.bodies.position;
     const Vec3 axis = o.axis == 'x' ? Vec3::UnitX() : Vec3::UnitY();
-    double table_velocity = 0;  // m/s: each level starts where the last left the table (no impulse between levels)
-    for (const double level : o.levels) {
+    StudyCursor cursor;
+    auto history_path = [&](const std::string& label) {
+      return o.out_dir.empty() ? std::string() : o.out_dir + "/history_" + label + ".csv";
+    };
+    const std::string checkpoint = o.out_dir.empty() ? std::string() : o.out_dir + "/" + study_checkpoint_file;
+    auto save = [&] {
+      if (checkpoint.empty()) return;
+      std::string what = "cross vault study, ";
+      what += r.damping.scheme;
+      if (cursor.level < o.levels.size()) {
+        what += cursor.in_level ? "in level " : "before level ";
+        what += detail::level_label(o.levels[cursor.level]) + " %";
+      } else {
+        what += "after the last level";
+      }
+      what += ", t = ";
+      what += models::detail::num(sim.time());
+      what += " s";
+      io::save_checkpoint(checkpoint, hash, what, [&](io::CheckpointWriter& w) {
+        detail::visit_study_state(w, r, cursor, sim, history, snapshots, settled_position);
+      });
+    };
+    if (resuming) {
+      io::load_checkpoint(o.resume, hash, [&](io::CheckpointReader& in) {
+        detail::visit_study_state(in, r, cursor, sim, history, snapshots, settled_position);
+      });
+      if (cursor.in_level) history.resume_file(history_path(detail::level_label(o.levels[cursor.level])));
+      if (o.progress)
+        std::fprintf(stderr, "resuming from '%s' at t = %.4f s (%s level %s %%)\n", o.resume.c_str(), sim.time(),
+                     cursor.in_level ? "in" : "before", cursor.level < o.levels.size() ? detail::level_label(o.levels[cursor.level]).c_str() : "-");
+    }
+    auto last_checkpoint = clock::now();
+    for (; cursor.level < o.levels.size(); ++cursor.level) {
+      const double level = o.levels[cursor.level];
       const std::string label = detail::level_label(level);
       LevelResult L;
       L.level = level;
-      const motion::BaseMotion table_motion(motion::scale(cut, level / o.record_level), {}, axis, sim.time(), table_velocity);
-      table_velocity = table_motion.final_velocity();
+      if (!cursor.in_level) {
+        cursor.level_start = sim.time();
+        cursor.start_velocity = cursor.table_velocity;  // each level starts where the last left the table
+      }
+      const motion::BaseMotion table_motion(motion::scale(cut, level / o.record_level), {}, axis, cursor.level_start,
+                                            cursor.start_velocity);
       model.base_velocity = [&table_motion](double t) { return table_motion.velocity_vector(t); };
       L.final_table_velocity = table_motion.final_velocity();
       L.duration = table_motion.duration() + o.rest;
-      history.begin_level(model, sim.time(), o.out_dir.empty() ? std::string() : o.out_dir + "/history_" + label + ".csv");
-      const auto energy0 = sim.energy();
-      double next_sample = sim.time();
-      double next_snapshot = sim.time();
       auto record = [&] {
-        if (sim.time() >= next_sample - 0.5 * sim.timestep()) {
+        if (sim.time() >= cursor.next_sample - 0.5 * sim.timestep()) {
           history.sample(model, sim.time());
-          next_sample += o.history_dt;
+          cursor.next_sample += o.history_dt;
         }
-        if (o.snapshots_every > 0 && !o.out_dir.empty() && sim.time() >= next_snapshot - 0.5 * sim.timestep()) {
+        if (o.snapshots_every > 0 && !o.out_dir.empty() && sim.time() >= cursor.next_snapshot - 0.5 * sim.timestep()) {
           snapshots.write(label, sim.time(), model, vault, settled_position);
-          next_snapshot += o.snapshots_every;
+          cursor.next_snapshot += o.snapshots_every;
         }
       };
-      record();
+      if (!cursor.in_level) {
+        history.begin_level(model, sim.time(), history_path(label));
+        cursor.energy_at_level_start = sim.energy();
+        cursor.next_sample = cursor.next_snapshot = sim.time();
+        cursor.level_steps = 0;
+        cursor.level_wall_seconds = 0;
+        cursor.in_level = true;
+        record();
+      }
+      const double wall_before = cursor.level_wall_seconds;
+      const auto run_start = clock::now();
+      auto step = [&] {
+        record();
+        ++cursor.level_steps;
+        ++cursor.dynamic_steps;
+        if ((cursor.level_steps & 1023) == 0 && o.checkpoint_minutes > 0 &&
+            clock::now() - last_checkpoint > std::chrono::duration<double>(60 * o.checkpoint_minutes)) {
+          cursor.level_wall_seconds = wall_before + std::chrono::duration<double>(clock::now() - run_start).count();
+          save();
+          last_checkpoint = clock::now();
+        }
+        return o.stop_after_steps == 0 || cursor.dynamic_steps < o.stop_after_steps;
+      };
       RunOptions run_options;
       run_options.progress = o.progress;
       const std::string progress_label = "level " + label + " %";
       run_options.label = progress_label.c_str();
-      const auto summary = run_for(sim, L.duration, record, run_options);
-      history.end_level();
-      model.base_velocity = [v = Vec3(table_velocity * axis)](double) { return v; };  // table_motion ends here
-      L.steps = summary.steps;
-      L.wall_seconds = summary.wall_seconds;
+      const auto summary = run_until(sim, cursor.level_start + L.duration, step, run_options);
+      cursor.level_wall_seconds = wall_before + summary.wall_seconds;
+      L.steps = cursor.level_steps;
+      L.wall_seconds = cursor.level_wall_seconds;
       L.interrupted = summary.interrupted;
-      L.simulated = sim.time() - table_motion.start();
+      L.simulated = sim.time() - cursor.level_start;
       L.peaks = history.peaks();
       for (std::size_t p = 0; p < history.points(); ++p) L.residual_displacement.push_back(history.last_displacement(p));
       L.damage = damage_census(sim, model);
       L.energy = sim.energy();
-      L.energy_at_start = energy0;
+      L.energy_at_start = cursor.energy_at_level_start;
+      if (summary.interrupted) {
+        save();  // the level stays open in the checkpoint, which holds the finished levels only
+        r.levels.push_back(L);  // the report shows this one as far as it went
+        r.interrupted = true;
+        break;
+      }
+      history.end_level();
+      cursor.table_velocity = table_motion.final_velocity();
+      model.base_velocity = [v = Vec3(cursor.table_velocity * axis)](double) { return v; };  // table_motion ends here
+      cursor.in_level = false;
       r.levels.push_back(L);
       if (!o.out_dir.empty()) {
         detail::write_level_outputs(o.out_dir, label, sim, model, vault, settled_position);
         detail::write_report(o.out_dir, r);
-      }
-      if (summary.interrupted) {
-        r.interrupted = true;
-        break;
+        ++cursor.level;
+        save();
+        --cursor.level;
+        last_checkpoint = clock::now();
       }
     }
-  });
+  }, built);
   r.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
   if (!o.out_dir.empty()) detail::write_report(o.out_dir, r);
   return r;

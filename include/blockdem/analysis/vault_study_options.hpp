@@ -76,6 +76,14 @@ struct VaultStudyOptions {
   double snapshots_every = 0;              // s; 0: no time series of the blocks
   bool progress = true;                    // a progress line on stderr
 
+  // Long runs: out_dir/checkpoint.bin is written at the end of each level, every checkpoint_minutes of wall time
+  // and when the run stops early (Ctrl-C, stop_after_steps); resume continues from one, bitwise as the run would
+  // have gone on, with the same options (the checkpoint refuses others) and writing into the same out_dir.
+  std::string resume;                      // a checkpoint to continue from; empty: start afresh
+  double checkpoint_minutes = 0;           // 0: only at the end of each level and when stopped
+  long long stop_after_steps = 0;          // stop (as if interrupted) once the dynamic run has taken this many
+                                           // steps in total, leaving a checkpoint; 0: never
+
   double scheme_zeta() const {
     if (zeta > 0) return zeta;
     return damping == DampingScheme::mass ? 0.04 : 0.03;
@@ -110,6 +118,10 @@ struct VaultStudyOptions {
     check(settle_tolerance > 0 && settle_tolerance < 1, "--settle-tolerance must be in (0, 1), got " + num(settle_tolerance));
     check(settle_max_steps >= 10, "--settle-steps must be >= 10, got " + std::to_string(settle_max_steps));
     check(history_dt >= 1e-5 && history_dt <= 1, "--history-dt must be in [1e-5, 1] s, got " + num(history_dt));
+    check(checkpoint_minutes >= 0 && checkpoint_minutes <= 1e6 && std::isfinite(checkpoint_minutes),
+          "--checkpoint-minutes must be in [0, 1e6] (0: at the end of each level only), got " + num(checkpoint_minutes));
+    check(stop_after_steps >= 0, "--stop-after-steps must be >= 0 (0: never), got " + std::to_string(stop_after_steps));
+    check(resume.empty() || !out_dir.empty(), "--resume needs the output folder of the run it continues (--out)");
     check(snapshots_every >= 0 && snapshots_every <= 100, "--snapshots-every must be in [0, 100] s, got " + num(snapshots_every));
   }
 };

@@ -7,6 +7,8 @@
 #include <csignal>
 #include <cstdio>
 #include <functional>
+#include <type_traits>
+#include <utility>
 
 namespace blockdem {
 
@@ -36,15 +38,17 @@ struct RunSummary {
   bool interrupted = false;
 };
 
-/// Steps `simulation` until its time has advanced by `duration` (s), calling `each_step()` after every step (for
-/// recorders). Stops early, with `interrupted` set, on SIGINT/SIGTERM once stop_on_interrupt() was called.
+/// Steps `simulation` until its time reaches `t_end` (s; the last step may end half a step short of it), calling
+/// `each_step()` after every step (for recorders; if it returns bool, false stops the run as an interrupt does).
+/// Stops early, with `interrupted` set, on SIGINT/SIGTERM once stop_on_interrupt() was called. The number of steps
+/// depends only on the simulation's time and t_end, so a run continued from a checkpoint ends on the same step.
 template <class Simulation, class EachStep = void (*)()>
-RunSummary run_for(Simulation& simulation, double duration, EachStep each_step = [] {}, RunOptions options = {}) {
+RunSummary run_until(Simulation& simulation, double t_end, EachStep each_step = [] {}, RunOptions options = {}) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   auto last_print = start;
-  const double t_end = simulation.time() + duration;
   const double t_start = simulation.time();
+  const double duration = t_end - t_start;
   RunSummary summary;
   while (simulation.time() < t_end - 0.5 * simulation.timestep()) {
     if (interrupted()) {
@@ -52,8 +56,15 @@ RunSummary run_for(Simulation& simulation, double duration, EachStep each_step =
       break;
     }
     simulation.step();
-    each_step();
     ++summary.steps;
+    if constexpr (std::is_same_v<decltype(each_step()), bool>) {
+      if (!each_step()) {
+        summary.interrupted = true;
+        break;
+      }
+    } else {
+      each_step();
+    }
     if (options.progress && (summary.steps & 255) == 0) {
       const auto now = clock::now();
       if (now - last_print > std::chrono::seconds(1)) {
@@ -69,8 +80,14 @@ RunSummary run_for(Simulation& simulation, double duration, EachStep each_step =
   }
   summary.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
   if (options.progress && summary.wall_seconds > 1.0) std::fprintf(stderr, "\n");
-  if (summary.interrupted) std::fprintf(stderr, "%s: interrupted at t = %.4f s; results so far are kept\n", options.label, simulation.time());
+  if (summary.interrupted) std::fprintf(stderr, "%s: stopped at t = %.4f s; results so far are kept\n", options.label, simulation.time());
   return summary;
+}
+
+/// run_until() for `duration` s from the simulation's current time.
+template <class Simulation, class EachStep = void (*)()>
+RunSummary run_for(Simulation& simulation, double duration, EachStep each_step = [] {}, RunOptions options = {}) {
+  return run_until(simulation, simulation.time() + duration, std::move(each_step), options);
 }
 
 }  // namespace blockdem
