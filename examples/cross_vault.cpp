@@ -47,6 +47,17 @@ struct RunCommand {
     o.out_dir = "vault_run";
     out = app.add_option("--out", o.out_dir, "output folder (created if missing; with --resume: the checkpoint's folder)")
               ->capture_default_str();
+    app.add_option("--kinematics", o.kinematics, "rigid blocks, mixed (steel frame rigid, the rest deformable, Sect. 6.1.1) "
+                                                 "or deformable (constant-strain tetrahedra, Sect. 5)")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, blockdem::analysis::VaultKinematics>{
+            {"rigid", blockdem::analysis::VaultKinematics::rigid},
+            {"mixed", blockdem::analysis::VaultKinematics::mixed},
+            {"deformable", blockdem::analysis::VaultKinematics::deformable}}))
+        ->capture_default_str();
+    app.add_option("--max-edge", o.max_edge, "mixed, deformable: largest tetrahedron edge in masonry and concrete, m [0.01, 10]")
+        ->capture_default_str();
+    app.add_option("--steel-max-edge", o.steel_max_edge,
+                   "deformable: largest tetrahedron edge in the steel frame and the movable piers, m [0.01, 10]")->capture_default_str();
     app.add_option("--record", o.record_path, "acceleration record (PEER .AT2, ESM ASCII, text); default: the built-in synthetic AQA75 stand-in");
     app.add_option("--units", units, "units of the record's samples: g, m/s2 or cm/s2 (default: from its header)");
     app.add_option("--axis", axis, "the table moves along x or y (the vault's longitudinal axis)")->capture_default_str();
@@ -177,17 +188,18 @@ int run_study(RunCommand& command) {
   fmt::print("input: {}{} ({}, baseline {}), PGA {:.3f} m/s^2 at {:g} %\n", r.input.name,
              r.input.synthetic ? " [SYNTHETIC stand-in, not the AQA recording]" : "", r.input.cut, r.input.baseline, r.input.pga,
              command.study.record_level);
-  fmt::print("model: {} rigid blocks, {} ties, {} contact points, {:.0f} kg free\n", r.model.blocks, r.model.ties,
-             r.model.contact_points, r.model.free_mass);
+  fmt::print("model: {} blocks ({}: {} deformable, {} nodes, {} tetrahedra), {} ties, {} contact points, {:.0f} kg free\n",
+             r.model.blocks, analysis::name(command.study.kinematics), r.model.deformable_blocks, r.model.nodes,
+             r.model.tetrahedra, r.model.ties, r.model.contact_points, r.model.free_mass);
   fmt::print("settling: {} steps, unbalanced force ratio {:.2e}{}, {:.1f} s\n", r.settling.steps, r.settling.unbalanced_ratio,
              r.settling.converged ? "" : " (NOT converged)", r.settling.wall_seconds);
   fmt::print("damping: {}\n", r.damping.description);
   if (r.free_vibration.measured)
     fmt::print("free vibration at OC1: {:.2f} Hz, damping ratio {:.4f} (the scheme's at that frequency: {:.4f})\n",
                r.free_vibration.decay.frequency_hz, r.free_vibration.decay.damping_ratio, r.free_vibration.expected_damping_ratio);
-  fmt::print("timestep: {:.3e} s (critical {:.3e} s unscaled, damping factor {:.4f}); density scaling adds {:.3f} % of the mass over {} blocks\n",
+  fmt::print("timestep: {:.3e} s (critical {:.3e} s unscaled, damping factor {:.4f}); density scaling adds {:.3f} % of the mass over {} blocks and {} nodes\n",
              r.timestep.dt, r.timestep.critical_unscaled, r.timestep.damping_factor, r.timestep.scaling.mass_increase_percent,
-             r.timestep.scaling.scaled_blocks);
+             r.timestep.scaling.scaled_blocks, r.timestep.scaling.scaled_nodes);
   for (const auto& L : r.levels) {
     auto peak = [&](const std::string& channel) {
       for (const auto& p : L.peaks)

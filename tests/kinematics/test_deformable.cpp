@@ -448,7 +448,7 @@ TEST_CASE("deformable bad input: degenerate tetrahedron, E <= 0, nu outside (-1,
 }
 
 TEST_CASE("deformable mesh: a general convex polyhedron (not a hexahedron) is fanned and refined, conforming") {
-  // A triangular prism: 6 vertices, so the fallback path.
+  // A triangular prism whose triangles are larger than the maximum edge: the fan path.
   const auto prism = geometry::make_prism({Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)}, Vec3(0, 0, 0.5));
   const auto mesh = geometry::mesh_convex_polyhedron(prism, 0.3, "prism");
   double volume = 0;
@@ -459,6 +459,39 @@ TEST_CASE("deformable mesh: a general convex polyhedron (not a hexahedron) is fa
   for (const auto& t : mesh.boundary)
     area += 0.5 * (mesh.nodes[t[1]] - mesh.nodes[t[0]]).cross(mesh.nodes[t[2]] - mesh.nodes[t[0]]).norm();
   CHECK(area == test::approx(2 * 0.5 + 0.5 * (1 + 1 + std::sqrt(2.0))));
+}
+
+TEST_CASE("deformable mesh: a long thin triangular prism (an infill wedge of the vault) is meshed in layers, none flat") {
+  // The top infill piece of the cross vault at its groin: a skew wedge 0.39 m long with a 0.029 x 0.046 m section,
+  // where a fan from the centroid refined to 0.25 m gave a tetrahedron of quality 0.0009.
+  geometry::ConvexPolyhedron wedge;
+  wedge.vertices = {Vec3(1.362947, 1.75, 1.754456), Vec3(1.362947, 1.75, 1.8),     Vec3(1.362947, 1.362947, 1.8),
+                    Vec3(1.362947, 1.362947, 1.754456), Vec3(1.334061, 1.75, 1.8), Vec3(1.334061, 1.334061, 1.8)};
+  wedge.faces = {{0, 1, 2, 3}, {1, 4, 5, 2}, {4, 0, 3, 5}, {4, 1, 0}, {5, 3, 2}};
+  const auto mesh = geometry::mesh_convex_polyhedron(wedge, 0.25, "wedge");
+  CHECK(mesh.tetrahedra.size() == 6);  // two layers of three
+  double volume = 0, worst = 1;
+  for (std::size_t t = 0; t < mesh.tetrahedra.size(); ++t) {
+    const auto& e = mesh.tetrahedra[t];
+    worst = std::min(worst, geometry::tetrahedron_quality(mesh.nodes[e[0]], mesh.nodes[e[1]], mesh.nodes[e[2]], mesh.nodes[e[3]]));
+    volume += mesh.volume(t);
+  }
+  CHECK(worst > 0.02);
+  double exact = 0;  // the polyhedron's volume from its faces (divergence theorem)
+  for (const auto& f : wedge.faces)
+    for (std::size_t i = 1; i + 1 < f.size(); ++i)
+      exact += wedge.vertices[static_cast<std::size_t>(f[0])].dot(
+                   wedge.vertices[static_cast<std::size_t>(f[i])].cross(wedge.vertices[static_cast<std::size_t>(f[i + 1])])) / 6.0;
+  CHECK(volume == test::approx(std::abs(exact)).epsilon(1e-9));
+  CHECK(mesh.longest_edge() <= 0.25 * (1 + 1e-9));
+  double area = 0, surface = 0;
+  for (std::size_t k = 0; k < mesh.boundary.size(); ++k) {
+    const auto& t = mesh.boundary[k];
+    area += 0.5 * (mesh.nodes[t[1]] - mesh.nodes[t[0]]).cross(mesh.nodes[t[2]] - mesh.nodes[t[0]]).norm();
+    CHECK(mesh.boundary_face[k] >= 0);
+  }
+  for (std::size_t f = 0; f < wedge.faces.size(); ++f) surface += wedge.face_area(f);
+  CHECK(area == test::approx(surface).epsilon(1e-9));
 }
 
 TEST_CASE("deformable reversibility: a deformable block bouncing on a rigid base retraces its motion when reversed") {

@@ -44,6 +44,7 @@ struct ChannelPeaks {
 /// Histories of the monitor points over one level. Columns: time (s from the start of the level), then per point
 /// <name>_ux, _uy, _uz (m, relative to the table and to the point's position at the start of the level) and
 /// <name>_ax, _ay, _az (m/s^2, absolute: centred differences of the recorded velocities, one-sided at the ends).
+/// A point on a rigid block moves with the block; a point on a deformable block follows its nearest node.
 class MonitorHistory {
  public:
   MonitorHistory(const model::Model& model, const std::vector<models::MonitorPoint>& points, std::size_t table_block)
@@ -53,6 +54,7 @@ class MonitorHistory {
       names_.push_back(p.name);
       block_.push_back(p.block);
       body_point_.push_back(b.rotation[p.block].transpose() * (p.position - b.position[p.block]));
+      node_.push_back(model.deformable.is_deformable(p.block) ? static_cast<std::int64_t>(model.nearest_node(p.block, p.position)) : -1);
     }
   }
 
@@ -90,10 +92,13 @@ class MonitorHistory {
     s.time = t - time0_;
     const Vec3 table = b.position[table_] - table_reference_;
     for (std::size_t p = 0; p < points(); ++p) {
-      const std::size_t i = block_[p];
-      const Vec3 arm = b.rotation[i] * body_point_[p];
-      s.displacement.push_back(b.position[i] + arm - reference_[p] - table);
-      s.velocity.push_back(b.velocity[i] + b.angular_velocity[i].cross(arm));
+      s.displacement.push_back(world(model, p) - reference_[p] - table);
+      if (node_[p] >= 0) {
+        s.velocity.push_back(model.deformable.nodes.velocity[static_cast<std::size_t>(node_[p])]);
+      } else {
+        const std::size_t i = block_[p];
+        s.velocity.push_back(b.velocity[i] + b.angular_velocity[i].cross(b.rotation[i] * body_point_[p]));
+      }
     }
     samples_.push_back(std::move(s));
     // Row k needs samples k - 1 and k + 1: write the one before the newest.
@@ -162,6 +167,7 @@ class MonitorHistory {
   static void visit_state(Self& s, Archive& ar) {
     ar.check("monitor points", s.names_);
     ar.same_size("monitor points in their blocks", s.body_point_);  // from the settled vault, not the one built anew
+    ar.same_size("monitor nodes", s.node_);
     ar("level start", s.time0_);
     ar("reference positions", s.reference_);
     ar("table reference", s.table_reference_);
@@ -176,7 +182,10 @@ class MonitorHistory {
     bytes_ += text.size();
   }
 
-  Vec3 world(const model::Model& model, std::size_t p) const { return model.bodies.to_world(block_[p], body_point_[p]); }
+  Vec3 world(const model::Model& model, std::size_t p) const {
+    return node_[p] >= 0 ? model.deformable.nodes.position[static_cast<std::size_t>(node_[p])]
+                         : model.bodies.to_world(block_[p], body_point_[p]);
+  }
 
   void write_row(std::size_t k) {
     const std::size_t lo = k == 0 ? 0 : k - 1;
@@ -210,6 +219,7 @@ class MonitorHistory {
   std::vector<std::string> names_;
   std::vector<std::size_t> block_;
   std::vector<Vec3> body_point_, reference_;
+  std::vector<std::int64_t> node_;  // the node a point on a deformable block follows, -1 on a rigid block
   Vec3 table_reference_ = Vec3::Zero();
   double time0_ = 0;
   std::vector<Sample> samples_;
@@ -234,11 +244,23 @@ struct DamageCensus {
   Counts total;
 };
 
-/// The census of a simulation of the cross vault (rigid blocks: joint tags are the components).
+/// The census of a simulation of the cross vault (joint tags are the components), over the contact points of rigid
+/// and deformable blocks alike.
 template <class Simulation>
 DamageCensus damage_census(const Simulation& sim, const model::Model& model) {
   DamageCensus census;
-  auto add = [&](std::size_t a, std::size_t b, bool cracked, bool crushed, bool slipped, double damage) {
+  sim.visit_contact_histories([&](std::size_t a, std::size_t b, const auto& h) {
+    bool cracked = false, crushed = false, slipped = false;
+    double damage = 0;
+    if constexpr (requires { h.tension_secant; }) {  // elasto-softening
+      cracked = h.tension_secant < 1;
+      crushed = h.compression_secant < 1;
+      damage = h.damage;
+      slipped = damage > 0 && !cracked && !crushed;
+    } else if constexpr (requires { h.slipping; }) {  // Mohr-Coulomb
+      slipped = h.failed || h.slipping;
+      damage = h.failed ? 1.0 : 0.0;
+    }
     const bool damaged = cracked || crushed || slipped || damage > 0;
     auto count = [&](DamageCensus::Counts& c) {
       ++c.contact_points;
@@ -252,31 +274,7 @@ DamageCensus damage_census(const Simulation& sim, const model::Model& model) {
     count(census.total);
     count(census.by_component[ta]);
     if (tb != ta) count(census.by_component[tb]);
-  };
-  {
-    const auto& g = sim.template group<contact::ElastoSoftening>();
-    for (std::size_t c = 0; c < g.contacts(); ++c)
-      for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k) {
-        const auto& h = g.history[k];
-        const bool cracked = h.tension_secant < 1;
-        const bool crushed = h.compression_secant < 1;
-        add(g.body_a[c], g.body_b[c], cracked, crushed, h.damage > 0 && !cracked && !crushed, h.damage);
-      }
-  }
-  {
-    const auto& g = sim.template group<contact::MohrCoulomb>();
-    for (std::size_t c = 0; c < g.contacts(); ++c)
-      for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k) {
-        const auto& h = g.history[k];
-        const bool slipped = h.failed || h.slipping;
-        add(g.body_a[c], g.body_b[c], false, false, slipped, h.failed ? 1.0 : 0.0);
-      }
-  }
-  {
-    const auto& g = sim.template group<contact::Elastic>();
-    for (std::size_t c = 0; c < g.contacts(); ++c)
-      for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k) add(g.body_a[c], g.body_b[c], false, false, false, 0.0);
-  }
+  });
   return census;
 }
 

@@ -103,6 +103,7 @@ struct VaultStudyResult {
   } input;
   struct {
     std::size_t blocks = 0, contact_points = 0, ties = 0;
+    std::size_t deformable_blocks = 0, nodes = 0, tetrahedra = 0;
     double free_mass = 0;  // kg
   } model;
   SettlingResult settling;
@@ -110,7 +111,7 @@ struct VaultStudyResult {
     std::string scheme, description;
   } damping;
   struct AddedMass {
-    long long blocks = 0;
+    long long blocks = 0, nodes = 0;
     double added_mass = 0;  // kg
   };
   struct {
@@ -196,8 +197,9 @@ inline std::string report_json(const VaultStudyResult& r) {
       .add("cut", r.input.cut).add("duration_s", r.input.duration).add("baseline", r.input.baseline)
       .add("axis", std::string(1, o.axis)).add("pga_m_s2", r.input.pga).add("pgv_m_s", r.input.pgv).add("pgd_m", r.input.pgd);
   if (r.input.synthetic) input.add("note", "the built-in synthetic AQA75 stand-in, NOT the AQA recording");
-  model.add("kinematics", "rigid").add("blocks", static_cast<long long>(r.model.blocks))
-      .add("nodes", 0LL).add("tetrahedra", 0LL)
+  model.add("kinematics", name(o.kinematics)).add("blocks", static_cast<long long>(r.model.blocks))
+      .add("deformable_blocks", static_cast<long long>(r.model.deformable_blocks))
+      .add("nodes", static_cast<long long>(r.model.nodes)).add("tetrahedra", static_cast<long long>(r.model.tetrahedra))
       .add("contact_points", static_cast<long long>(r.model.contact_points)).add("ties", static_cast<long long>(r.model.ties))
       .add("free_mass_kg", r.model.free_mass);
   settling.add("steps", r.settling.steps).add("wall_seconds", r.settling.wall_seconds)
@@ -207,9 +209,9 @@ inline std::string report_json(const VaultStudyResult& r) {
   JsonObject where;
   for (const auto c : models::all_components) {
     const auto& a = r.timestep.added_by_component[models::index(c)];
-    if (a.blocks == 0) continue;
+    if (a.blocks == 0 && a.nodes == 0) continue;
     JsonObject w;
-    w.add("blocks", a.blocks).add("added_mass_kg", a.added_mass);
+    w.add("blocks", a.blocks).add("nodes", a.nodes).add("added_mass_kg", a.added_mass);
     where.add(models::name(c), w);
   }
   const auto& s = r.timestep.scaling;
@@ -217,6 +219,7 @@ inline std::string report_json(const VaultStudyResult& r) {
       .add("critical_s", r.timestep.critical).add("dt_s", r.timestep.dt)
       .add("density_scaling_mass_added_kg", s.added_mass).add("density_scaling_mass_increase_percent", s.mass_increase_percent)
       .add("density_scaled_blocks", static_cast<long long>(s.scaled_blocks))
+      .add("density_scaled_nodes", static_cast<long long>(s.scaled_nodes))
       .add("max_density_scaling_factor", s.max_density_scaling_factor).add("density_scaling_by_component", where);
   std::vector<JsonObject> levels;
   std::vector<double> minutes;

@@ -74,12 +74,31 @@ inline motion::Record input_record(const VaultStudyOptions& o, std::string& cut_
   return motion::truncate_window(record, o.window_start, o.window_end).record;
 }
 
-/// The rigid-block model with the steel ties as trusses between their anchor blocks.
-inline model::Model vault_model(const models::CrossVault& v) {
+/// Whether the options make block i of the vault deformable: every free block (deformable), every free block but the
+/// steel frame (mixed, Sect. 6.1.1), none (rigid).
+inline bool meshed(const VaultStudyOptions& o, const models::CrossVaultBlock& b) {
+  if (b.motion != model::Motion::free || o.kinematics == VaultKinematics::rigid) return false;
+  return o.kinematics == VaultKinematics::deformable || b.component != models::Component::steel_frame;
+}
+
+/// The model of the options: the generator's blocks, rigid or meshed into constant-strain tetrahedra (max edge
+/// o.max_edge for masonry and concrete, o.steel_max_edge for the steel frame and the movable steel piers, Sect. 5)
+/// with each block's material, and the steel ties as trusses between the anchors (an end on a deformable anchor on
+/// its nearest node, on a rigid one fixed to the block).
+inline model::Model vault_model(const models::CrossVault& v, const VaultStudyOptions& o) {
   model::Model m = models::build_rigid_model(v);
+  for (std::size_t i = 0; i < v.blocks.size(); ++i) {
+    const auto& b = v.blocks[i];
+    if (!meshed(o, b)) continue;
+    const bool steel = b.component == models::Component::steel_frame || b.component == models::Component::movable_pier;
+    const auto& material = v.materials[b.material];
+    m.make_deformable(i, steel ? o.steel_max_edge : o.max_edge, model::IsotropicElastic(material.youngs_modulus, material.poisson_ratio));
+  }
+  auto end = [&m](std::size_t block, const Vec3& x) {
+    return m.deformable.is_deformable(block) ? m.node_end(m.nearest_node(block, x)) : m.block_end(block, x);
+  };
   for (const auto& t : v.ties)
-    m.add_truss(m.block_end(t.block_a, t.end_a), m.block_end(t.block_b, t.end_b), t.area, t.youngs_modulus, t.density,
-                t.pretension, t.name);
+    m.add_truss(end(t.block_a, t.end_a), end(t.block_b, t.end_b), t.area, t.youngs_modulus, t.density, t.pretension, t.name);
   return m;
 }
 
@@ -90,8 +109,8 @@ typename Sim::PropertyFunction vault_properties(const models::CrossVault& v) {
   };
 }
 
-/// Added mass (kg) that partial density scaling to `target` (s) would need: every free rigid block whose own limit
-/// (translation and rotation, eq. 1-3 with the damping factor of eq. 11/20) is below the target is made heavier.
+/// Added mass (kg) that partial density scaling to `target` (s) would need: every free rigid block and free node whose
+/// own limit (eq. 1-3 with the damping factor of eq. 11/20) is below the target is made heavier.
 template <class Sim, class Factor>
 double density_scaling_mass(const Sim& sim, double target, Factor timestep_factor) {
   const auto& b = sim.model().bodies;
@@ -110,6 +129,9 @@ double density_scaling_mass(const Sim& sim, double target, Factor timestep_facto
     const double factor = std::max({1.0, kt[i] / (omega2 * b.mass[i]), kr[i] / (omega2 * b.principal_inertia[i].minCoeff())});
     added += b.mass[i] * (factor - 1.0);
   }
+  const auto& nd = sim.model().deformable.nodes;
+  for (std::size_t i = 0; i < nd.size(); ++i)
+    if ((nd.fixity[i] & 7) != 7) added += std::max(0.0, kn[i] / omega2 - nd.mass[i]);
   return added;
 }
 
@@ -211,11 +233,14 @@ void with_settled_vault(const VaultStudyOptions& o, VaultStudyResult& r, F&& f,
                         Built built = [](const model::Model&, const models::CrossVault&) {}) {
   const bool resuming = !o.resume.empty();
   const auto vault = models::make_cross_vault(o.vault);
-  model::Model model = detail::vault_model(vault);
+  model::Model model = detail::vault_model(vault, o);
   built(model, vault);
   std::size_t table = 0;
   while (table < vault.blocks.size() && vault.blocks[table].component != models::Component::slab) ++table;
   r.model.blocks = model.bodies.size();
+  r.model.deformable_blocks = model.deformable.blocks.size();
+  r.model.nodes = model.deformable.nodes.size();
+  r.model.tetrahedra = model.deformable.tetrahedra.size();
   r.model.ties = model.deformable.trusses.size();
   r.model.free_mass = model.total_mass();
 
@@ -267,13 +292,20 @@ void with_settled_vault(const VaultStudyOptions& o, VaultStudyResult& r, F&& f,
 
     Dynamic sim(settle, policy);
     if (!resuming && target > sim.timestep()) {
-      const std::vector<double> real_mass = model.bodies.mass;
+      const std::vector<double> real_mass = model.bodies.mass, real_node_mass = model.deformable.nodes.mass;
       r.timestep.scaling = sim.scale_density_to(target);
       for (std::size_t i = 0; i < model.bodies.size(); ++i)
-        if (model.bodies.mass[i] > real_mass[i]) {
+        if (!model.deformable.is_deformable(i) && model.bodies.mass[i] > real_mass[i]) {
           auto& where = r.timestep.added_by_component[models::index(vault.blocks[i].component)];
           where.blocks += 1;
           where.added_mass += model.bodies.mass[i] - real_mass[i];
+        }
+      const auto& nd = model.deformable.nodes;
+      for (std::size_t i = 0; i < nd.size(); ++i)
+        if (nd.mass[i] > real_node_mass[i]) {
+          auto& where = r.timestep.added_by_component[models::index(vault.blocks[nd.block[i]].component)];
+          where.nodes += 1;
+          where.added_mass += nd.mass[i] - real_node_mass[i];
         }
     }
     r.timestep.dt = sim.timestep();
@@ -303,7 +335,10 @@ inline FreeVibrationResult measure_free_vibration(VaultStudyOptions o, double du
     const auto& point = vault.monitor_points[oc1];
     const auto& b = model.bodies;
     const Vec3 body_point = b.rotation[point.block].transpose() * (point.position - b.position[point.block]);
-    const Vec3 reference = b.to_world(point.block, body_point), table_reference = b.position[table];
+    const bool on_node = model.deformable.is_deformable(point.block);  // then OC1 follows its nearest node
+    const std::size_t node = on_node ? model.nearest_node(point.block, point.position) : 0;
+    auto where = [&] { return on_node ? model.deformable.nodes.position[node] : b.to_world(point.block, body_point); };
+    const Vec3 reference = where(), table_reference = b.position[table];
     const Vec3 axis = o.axis == 'x' ? Vec3::UnitX() : Vec3::UnitY();
     const double t0 = sim.time();
     model.base_velocity = [=](double t) {
@@ -317,7 +352,7 @@ inline FreeVibrationResult measure_free_vibration(VaultStudyOptions o, double du
     for (long long n = 1; sim.time() < t0 + pulse_duration + duration && !interrupted(); ++n) {
       sim.step();
       if (n % every != 0 || sim.time() < t0 + pulse_duration) continue;
-      const Vec3 u = b.to_world(point.block, body_point) - reference - (b.position[table] - table_reference);
+      const Vec3 u = where() - reference - (b.position[table] - table_reference);
       time.push_back(sim.time() - t0);
       response.push_back(u.dot(axis));
     }

@@ -29,6 +29,18 @@ inline constexpr const char* name(DampingScheme s) {
   return "?";
 }
 
+/// How the blocks move (paper Sect. 5, 6.1.1): all rigid; mixed (the steel frame rigid, every other free block
+/// deformable); all deformable (constant-strain tetrahedra).
+enum class VaultKinematics { rigid, mixed, deformable };
+inline constexpr const char* name(VaultKinematics k) {
+  switch (k) {
+    case VaultKinematics::rigid: return "rigid";
+    case VaultKinematics::mixed: return "mixed";
+    case VaultKinematics::deformable: return "deformable";
+  }
+  return "?";
+}
+
 /// How the record is cut before it is applied: the first seconds (Sect. 5: 15 s) or the pulse support found by the
 /// wavelet truncation (Sect. 6.1.2).
 enum class Truncation { window, wavelet };
@@ -37,6 +49,9 @@ inline constexpr int max_study_branches = 4;  // Maxwell<1> .. Maxwell<4> are co
 
 struct VaultStudyOptions {
   models::CrossVaultOptions vault;
+  VaultKinematics kinematics = VaultKinematics::rigid;
+  double max_edge = 0.25;        // m, of the tetrahedra of masonry and concrete (Sect. 5)
+  double steel_max_edge = 0.5;   // m, of the steel frame and the movable (steel) piers (Sect. 5)
 
   // Input (Sect. 2, 5).
   std::string record_path;                 // empty: the built-in synthetic AQA75 stand-in
@@ -95,6 +110,8 @@ struct VaultStudyOptions {
     };
     auto num = [](double v) { return models::detail::num(v); };
     vault.validate();
+    check(max_edge >= 0.01 && max_edge <= 10, "--max-edge must be in [0.01, 10] m, got " + num(max_edge));
+    check(steel_max_edge >= 0.01 && steel_max_edge <= 10, "--steel-max-edge must be in [0.01, 10] m, got " + num(steel_max_edge));
     check(axis == 'x' || axis == 'y', std::string("--axis must be x or y, got ") + axis);
     check(record_level > 0 && record_level <= 1000, "--record-level must be in (0, 1000] %, got " + num(record_level));
     check(!levels.empty(), "--levels needs at least one level");

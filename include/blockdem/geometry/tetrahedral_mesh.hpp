@@ -1,7 +1,8 @@
 #pragma once
 // Meshing of a convex block into constant-strain tetrahedra with a maximum edge length (paper Sect. 3.1-3.2): a
 // structured grid of the hexahedron's trilinear map, each cell split into the 6 tetrahedra of Kuhn's split (conforming
-// across cells, nodes shared), for any block with the topology of a hexahedron; other convex polyhedra are fanned
+// across cells, nodes shared), for any block with the topology of a hexahedron; a triangular prism with short ends in
+// layers along its length (3 tetrahedra each: the infill's wedges); other convex polyhedra are fanned
 // from the centroid over their triangulated faces and refined uniformly (each tetrahedron into 8, Bey's red
 // refinement, conforming) until every edge is short enough. A quality check rejects degenerate tetrahedra.
 
@@ -136,6 +137,52 @@ inline bool hexahedron_corners(const ConvexPolyhedron& p, std::array<Vec3, 8>& c
   return true;
 }
 
+/// If p is a triangular prism (two triangles joined by three quadrilaterals), its corners: c[0..2] one triangle,
+/// c[3..5] the other, c[i + 3] joined to c[i] by an edge.
+inline bool triangular_prism_corners(const ConvexPolyhedron& p, std::array<Vec3, 6>& c) {
+  if (p.vertices.size() != 6 || p.faces.size() != 5) return false;
+  const std::vector<int>* bottom = nullptr;
+  int triangles = 0;
+  for (const auto& f : p.faces) {
+    if (f.size() == 3 && ++triangles == 1) bottom = &f;
+    else if (f.size() != 3 && f.size() != 4) return false;
+  }
+  if (triangles != 2) return false;
+  std::map<int, std::vector<int>> neighbours;
+  for (const auto& f : p.faces)
+    for (std::size_t i = 0; i < f.size(); ++i) neighbours[f[i]].push_back(f[(i + 1) % f.size()]);
+  for (std::size_t i = 0; i < 3; ++i) {
+    const int b = (*bottom)[i];
+    c[i] = p.vertices[static_cast<std::size_t>(b)];
+    int top = -1;
+    for (const auto& [v, ns] : neighbours)
+      if (std::find(bottom->begin(), bottom->end(), v) == bottom->end() &&
+          (std::find(ns.begin(), ns.end(), b) != ns.end() ||
+           std::find(neighbours[b].begin(), neighbours[b].end(), v) != neighbours[b].end()))
+        top = v;
+    if (top < 0) return false;
+    c[i + 3] = p.vertices[static_cast<std::size_t>(top)];
+  }
+  return true;
+}
+
+/// A triangular prism in n layers along its lateral edges, each layer split into 3 tetrahedra (the lateral faces
+/// are the block's boundary, so the layers share only their whole triangles and the mesh conforms). For a long
+/// thin prism (an infill wedge) this keeps every tetrahedron as thick as the prism, where a fan from the centroid
+/// gives flat ones.
+inline TetMesh layered_prism(const std::array<Vec3, 6>& c, int n) {
+  TetMesh m;
+  for (int k = 0; k <= n; ++k)
+    for (std::size_t i = 0; i < 3; ++i) m.nodes.push_back(c[i] + (c[i + 3] - c[i]) * (double(k) / n));
+  for (int k = 0; k < n; ++k) {
+    const auto a = static_cast<std::uint32_t>(3 * k), b = a + 3;
+    m.tetrahedra.push_back({a, a + 1, a + 2, b});
+    m.tetrahedra.push_back({a + 1, a + 2, b, b + 1});
+    m.tetrahedra.push_back({a + 2, b, b + 1, b + 2});
+  }
+  return m;
+}
+
 inline TetMesh structured_hexahedron(const std::array<Vec3, 8>& c, std::array<int, 3> n) {
   TetMesh m;
   auto map = [&](double u, double v, double w) {  // trilinear, corners 0-1-2-3 bottom (u, v), 4-7 top
@@ -199,7 +246,23 @@ inline TetMesh mesh_convex_polyhedron(const ConvexPolyhedron& p, double max_edge
     throw InvalidArgument("block '" + name + "': maximum edge length must be > 0 m, got " + std::to_string(max_edge));
   TetMesh m;
   std::array<Vec3, 8> c;
-  if (detail::hexahedron_corners(p, c)) {
+  std::array<Vec3, 6> prism;
+  auto short_ends = [&] {  // both triangles' edges within max_edge: layers alone are enough
+    for (std::size_t i = 0; i < 3; ++i)
+      if ((prism[i] - prism[(i + 1) % 3]).norm() > max_edge * (1 + 1e-9) ||
+          (prism[i + 3] - prism[(i + 1) % 3 + 3]).norm() > max_edge * (1 + 1e-9))
+        return false;
+    return true;
+  };
+  if (detail::triangular_prism_corners(p, prism) && short_ends()) {
+    double length = 0;
+    for (std::size_t i = 0; i < 3; ++i) length = std::max(length, (prism[i + 3] - prism[i]).norm());
+    int n = std::max(1, static_cast<int>(std::ceil(length / max_edge - 1e-9)));
+    for (m = detail::layered_prism(prism, n); m.longest_edge() > max_edge * (1 + 1e-9); m = detail::layered_prism(prism, ++n))
+      if (3.0 * n > double(max_tetrahedra))
+        throw InvalidArgument("block '" + name + "': a maximum edge of " + std::to_string(max_edge) + " m needs more than " +
+                              std::to_string(max_tetrahedra) + " tetrahedra");
+  } else if (detail::hexahedron_corners(p, c)) {
     // Divisions along u, v, w from the longest of the four parallel edges; refined until the cells' diagonals (edges
     // of Kuhn's tetrahedra) also fit.
     auto longest = [&](int a, int b, int d, int e, int f, int g, int h, int k) {

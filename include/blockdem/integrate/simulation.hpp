@@ -279,6 +279,21 @@ class Simulation {
     std::size_t block_a = 0, block_b = 0;
   };
 
+  /// Calls f(block_a, block_b, const History&) for every contact point with its joint law's history: the block
+  /// contacts, then the node contacts of deformable blocks (block_a: the node's block).
+  template <class F>
+  void visit_contact_histories(F&& f) const {
+    for_each_group([&](const auto& g) {
+      for (std::size_t c = 0; c < g.contacts(); ++c)
+        for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k)
+          f(std::size_t{g.body_a[c]}, std::size_t{g.body_b[c]}, g.history[k]);
+    });
+    if (!mixed_) return;
+    deformable_.for_each_group([&](const auto& g) {
+      for (std::size_t k = 0; k < g.size(); ++k) f(std::size_t{g.node_block[k]}, std::size_t{g.face_block[k]}, g.history[k]);
+    });
+  }
+
   /// Calls f(const ContactView&) for every contact point, group by group.
   template <class F>
   void visit_contacts(F&& f) const {
