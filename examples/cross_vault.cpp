@@ -191,8 +191,9 @@ int run_study(RunCommand& command) {
   fmt::print("model: {} blocks ({}: {} deformable, {} nodes, {} tetrahedra), {} ties, {} contact points, {:.0f} kg free\n",
              r.model.blocks, analysis::name(command.study.kinematics), r.model.deformable_blocks, r.model.nodes,
              r.model.tetrahedra, r.model.ties, r.model.contact_points, r.model.free_mass);
-  fmt::print("settling: {} steps, unbalanced force ratio {:.2e}{}, {:.1f} s\n", r.settling.steps, r.settling.unbalanced_ratio,
-             r.settling.converged ? "" : " (NOT converged)", r.settling.wall_seconds);
+  fmt::print("settling: {} steps, unbalanced force ratio {:.2e}{}, {:.1f} s; damaged joints once settled {} (cracked {}, crushed {})\n",
+             r.settling.steps, r.settling.unbalanced_ratio, r.settling.converged ? "" : " (NOT converged)", r.settling.wall_seconds,
+             r.settling.damaged_joints, r.settling.cracked_joints, r.settling.crushed_joints);
   fmt::print("damping: {}\n", r.damping.description);
   if (r.free_vibration.measured)
     fmt::print("free vibration at OC1: {:.2f} Hz, damping ratio {:.4f} (the scheme's at that frequency: {:.4f})\n",

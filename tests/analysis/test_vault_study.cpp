@@ -84,6 +84,7 @@ TEST_CASE("vault study: under zero input the settled vault stays at rest (every 
     if (p.name.find("_u") != std::string::npos) largest = std::max({largest, std::abs(p.max), std::abs(p.min)});
   MESSAGE("zero input: largest monitor displacement " << largest << " m over 2 s; settled in " << r.settling.steps << " steps");
   CHECK(largest < 1e-5);
+  CHECK(r.settling.damaged_joints == 0);
   CHECK(r.levels[0].damage.total.damaged == 0);
 }
 
@@ -118,6 +119,8 @@ TEST_CASE("vault study: under zero input the settled mixed and deformable vaults
                                        << " m over 2 s; settled in " << r.settling.steps << " steps; damaged joints "
                                        << r.levels[0].damage.total.damaged << "; energy balance error " << r.levels[0].energy.balance_error);
     CHECK(largest < 1e-5);
+    CHECK(r.settling.damaged_joints == 0);
+    CHECK(r.levels[0].damage.total.damaged == 0);
   }
 }
 

@@ -65,6 +65,7 @@ struct SettlingResult {
   double wall_seconds = 0, unbalanced_ratio = 1;
   double dt = 0;  // s, of the static mass scaling
   bool converged = false;
+  long long damaged_joints = 0, cracked_joints = 0, crushed_joints = 0;  // contact points, once settled
 };
 
 /// The first mode of the settled vault in free decay (measure_free_vibration).
@@ -204,7 +205,9 @@ inline std::string report_json(const VaultStudyResult& r) {
       .add("free_mass_kg", r.model.free_mass);
   settling.add("steps", r.settling.steps).add("wall_seconds", r.settling.wall_seconds)
       .add("unbalanced_force_ratio", r.settling.unbalanced_ratio).add("tolerance", o.settle_tolerance)
-      .add("converged", r.settling.converged).add("static_mass_scaling_dt_s", r.settling.dt);
+      .add("converged", r.settling.converged).add("static_mass_scaling_dt_s", r.settling.dt)
+      .add("damaged_contact_points", r.settling.damaged_joints).add("cracked_contact_points", r.settling.cracked_joints)
+      .add("crushed_contact_points", r.settling.crushed_joints);
   damping.add("scheme", r.damping.scheme).add("description", r.damping.description);
   JsonObject where;
   for (const auto c : models::all_components) {

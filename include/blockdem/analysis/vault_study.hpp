@@ -283,6 +283,10 @@ void with_settled_vault(const VaultStudyOptions& o, VaultStudyResult& r, F&& f,
 
     if (!resuming) {
       detail::settle(settle, std::max(unscaled, target), o, r.settling);
+      const auto census = damage_census(settle, model);
+      r.settling.damaged_joints = census.total.damaged;
+      r.settling.cracked_joints = census.total.cracked;
+      r.settling.crushed_joints = census.total.crushed;
       if (!o.out_dir.empty()) detail::write_report(o.out_dir, r);
       if (interrupted()) {
         r.interrupted = true;
