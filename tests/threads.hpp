@@ -33,4 +33,21 @@ std::size_t differences_between_one_and_two_threads(Run run) {
   return different;
 }
 
+/// One OpenMP thread for a test case (ctest runs two tests at once on two cores; threads that wait on a busy core
+/// slow a run many times over); the number of processors again afterwards.
+struct OneThread {
+  OneThread() {
+#ifdef _OPENMP
+    omp_set_num_threads(1);
+#endif
+  }
+  ~OneThread() {
+#ifdef _OPENMP
+    omp_set_num_threads(omp_get_num_procs());
+#endif
+  }
+  OneThread(const OneThread&) = delete;
+  OneThread& operator=(const OneThread&) = delete;
+};
+
 }  // namespace blockdem::test

@@ -10,23 +10,13 @@
 #include <string>
 
 #include "blockdem/analysis/vault_study.hpp"
+#include "../threads.hpp"
 
 using namespace blockdem;
 
 namespace {
 
-struct OneThread {
-  OneThread() {
-#ifdef _OPENMP
-    omp_set_num_threads(1);
-#endif
-  }
-  ~OneThread() {
-#ifdef _OPENMP
-    omp_set_num_threads(omp_get_num_procs());
-#endif
-  }
-};
+using test::OneThread;
 
 /// The coarse vault (178 blocks), two short levels, snapshots: a few seconds per run.
 analysis::VaultStudyOptions two_levels(const std::filesystem::path& dir) {

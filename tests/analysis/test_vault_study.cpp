@@ -18,20 +18,7 @@ using namespace blockdem;
 
 namespace {
 
-/// One OpenMP thread for a test case (ctest runs two tests at once on two cores; threads that wait on a busy core
-/// slow a run many times over). The thread test sets its own counts.
-struct OneThread {
-  OneThread() {
-#ifdef _OPENMP
-    omp_set_num_threads(1);
-#endif
-  }
-  ~OneThread() {
-#ifdef _OPENMP
-    omp_set_num_threads(omp_get_num_procs());
-#endif
-  }
-};
+using test::OneThread;
 
 analysis::VaultStudyOptions coarse_study() {
   analysis::VaultStudyOptions o;
@@ -42,7 +29,21 @@ analysis::VaultStudyOptions coarse_study() {
   return o;
 }
 
-motion::Record constant_record(double value, double duration, double dt = 0.01) {
+motion::Record constant_record(double value, double duration, double dt = 0.01);
+
+/// The coarse vault under 2 s of zero input.
+analysis::VaultStudyOptions zero_input_study() {
+  auto o = coarse_study();
+  o.record = constant_record(0.0, 2.0);
+  o.record_level = 100;
+  o.levels = {100};
+  o.window_start = 0;
+  o.window_end = 2.0;
+  o.baseline = "none";
+  return o;
+}
+
+motion::Record constant_record(double value, double duration, double dt) {
   motion::Record r;
   r.name = "test record";
   r.dt = dt;
@@ -68,14 +69,7 @@ std::string contents(const std::filesystem::path& path) {
 
 TEST_CASE("vault study: under zero input the settled vault stays at rest (every monitor point within 1e-5 m over 2 s)") {
   const OneThread one_thread;
-  auto o = coarse_study();
-  o.record = constant_record(0.0, 2.0);
-  o.record_level = 100;
-  o.levels = {100};
-  o.window_start = 0;
-  o.window_end = 2.0;
-  o.baseline = "none";
-  const auto r = analysis::run_vault_study(o);
+  const auto r = analysis::run_vault_study(zero_input_study());
   REQUIRE(r.settling.converged);
   REQUIRE(r.levels.size() == 1);
   CHECK(r.levels[0].simulated == doctest::Approx(2.0).epsilon(1e-3));
@@ -96,17 +90,11 @@ TEST_CASE("vault study: under zero input the settled mixed and deformable vaults
   for (const auto kinematics : {analysis::VaultKinematics::mixed, analysis::VaultKinematics::deformable}) {
     const std::string variant = analysis::name(kinematics);
     CAPTURE(variant);
-    auto o = coarse_study();
+    auto o = zero_input_study();
     o.kinematics = kinematics;
     o.max_edge = o.steel_max_edge = 1.0;
     o.target_dt = 5e-6;
     o.max_mass_increase_percent = 200;
-    o.record = constant_record(0.0, 2.0);
-    o.record_level = 100;
-    o.levels = {100};
-    o.window_start = 0;
-    o.window_end = 2.0;
-    o.baseline = "none";
     const auto r = analysis::run_vault_study(o);
     REQUIRE(r.settling.converged);
     REQUIRE(r.levels.size() == 1);
