@@ -137,19 +137,25 @@ TEST_CASE("vault study: the table follows the scaled input, and the acceleration
 }
 
 TEST_CASE("vault study: the energy balance of a level closes within 1 % for noDamp, MassProp and Maxwell") {
+  // noDamp at 75 % over 2 s of the strong part is the hardest case: about 1,300 damaged contact points, blocks
+  // sliding and re-contacting, nothing viscous to hide an error. The energy that re-detection stores in new CPs
+  // (EnergyReport::contact_update) is a term of its own: a few J, about 1 % of the work in.
   const OneThread one_thread;
   for (const auto scheme : {analysis::DampingScheme::none, analysis::DampingScheme::mass, analysis::DampingScheme::maxwell}) {
     auto o = coarse_study();
-    o.levels = {50};
+    const bool damaging = scheme == analysis::DampingScheme::none;
+    o.levels = {damaging ? 75.0 : 50.0};
     o.window_start = 2.0;  // the strong part of the synthetic AQA75 stand-in
-    o.window_end = 3.0;
+    o.window_end = damaging ? 4.0 : 3.0;
     o.damping = scheme;
     const auto r = analysis::run_vault_study(o);
     REQUIRE(r.levels.size() == 1);
     const auto& e = r.levels[0].energy;
     MESSAGE(std::string(analysis::name(scheme)) << ": balance error " << e.balance_error << ", base work " << e.base_work << " J, viscous "
-                                   << e.viscous << " J, hysteretic " << e.slip << " J, kinetic " << e.kinetic << " J");
+                                   << e.viscous << " J, hysteretic " << e.slip << " J, kinetic " << e.kinetic << " J, contact updates "
+                                   << e.contact_update << " J; damaged contact points " << r.levels[0].damage.total.damaged);
     CHECK(e.balance_error < 0.01);
+    if (damaging) CHECK(r.levels[0].damage.total.damaged > 500);
     CHECK(std::abs(e.base_work) > 0);
     if (scheme == analysis::DampingScheme::none) CHECK(e.viscous == doctest::Approx(0.0));
     else CHECK(e.viscous > 0);

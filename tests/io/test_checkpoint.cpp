@@ -189,6 +189,7 @@ std::vector<std::string> differences(const Simulation<Damping, Laws...>& a, cons
   d.value("base work", ea.base_work, eb.base_work);
   d.value("viscous energy", ea.viscous, eb.viscous);
   d.value("slip energy", ea.slip, eb.slip);
+  d.value("contact update energy", ea.contact_update, eb.contact_update);
   d.value("balance error", ea.balance_error, eb.balance_error);
   d.value("time", a.time(), b.time());
   d.value("steps", a.steps(), b.steps());

@@ -179,7 +179,7 @@ inline io::JsonObject energy_json(const EnergyReport& e) {
   io::JsonObject j;
   j.add("work_in_j", e.gravity_work + e.base_work).add("gravity_work_j", e.gravity_work).add("base_work_j", e.base_work)
       .add("kinetic_j", e.kinetic).add("elastic_j", e.elastic).add("viscous_j", e.viscous).add("hysteretic_j", e.slip)
-      .add("balance_error", e.balance_error);
+      .add("contact_update_j", e.contact_update).add("balance_error", e.balance_error);
   return j;
 }
 
@@ -252,6 +252,7 @@ inline std::string report_json(const VaultStudyResult& r) {
     delta.elastic -= L.energy_at_start.elastic;
     delta.viscous -= L.energy_at_start.viscous;
     delta.slip -= L.energy_at_start.slip;
+    delta.contact_update -= L.energy_at_start.contact_update;
     l.add("level_percent", L.level).add("duration_s", L.duration).add("simulated_s", L.simulated).add("steps", L.steps)
         .add("wall_seconds", L.wall_seconds).add("steps_per_second", L.steps_per_second()).add("dt_s", r.timestep.dt)
         .add("interrupted", L.interrupted).add("final_table_velocity_m_s", L.final_table_velocity)
