@@ -686,17 +686,22 @@ class Simulation {
                        field_viscous_work(g)), ...);
     }, old);
     std::map<std::pair<int, int>, Properties> chosen;
-    for (std::size_t begin = 0, end = 0; begin < candidates.size(); begin = end) {
-      const auto& c = candidates[begin];
-      end = begin + 1;
-      while (end < candidates.size() && candidates[end].a == c.a && candidates[end].b == c.b) ++end;
-      const int ta = b.joint_tag[c.a], tb = b.joint_tag[c.b];
-      auto it = chosen.find({ta, tb});
-      if (it == chosen.end()) it = chosen.emplace(std::make_pair(ta, tb), properties_(ta, tb)).first;
-      std::visit([&](const auto& params) {
-        add_contact(params, candidates.data() + begin, candidates.data() + end, old, keep_history, match, carried_slip,
-                    carried_viscous);
-      }, it->second);
+    // With contact fields (Maxwell), the contacts in the field form first and those whose CPs keep their own branch
+    // states after them, so that the contact pass's tiles of four are of one form (at most one mixed tile a group).
+    constexpr int passes = (Group<Laws>::has_field || ...) ? 2 : 1;
+    for (int pass = 0; pass < passes; ++pass) {
+      for (std::size_t begin = 0, end = 0; begin < candidates.size(); begin = end) {
+        const auto& c = candidates[begin];
+        end = begin + 1;
+        while (end < candidates.size() && candidates[end].a == c.a && candidates[end].b == c.b) ++end;
+        const int ta = b.joint_tag[c.a], tb = b.joint_tag[c.b];
+        auto it = chosen.find({ta, tb});
+        if (it == chosen.end()) it = chosen.emplace(std::make_pair(ta, tb), properties_(ta, tb)).first;
+        std::visit([&](const auto& params) {
+          add_contact(params, candidates.data() + begin, candidates.data() + end, old, keep_history, match, carried_slip,
+                      carried_viscous, passes == 2 ? pass : -1);
+        }, it->second);
+      }
     }
     retired_slip_ += old_slip - carried_slip;
     retired_viscous_ += old_viscous - carried_viscous;
@@ -730,10 +735,27 @@ class Simulation {
   /// Adds the contact of the CPs [first, last) (one block pair) to the group of the law of `params`.
   template <class Params>
   void add_contact(const Params& params, const model::ContactCandidate* first, const model::ContactCandidate* last,
-                   Groups& old, bool keep_history, double match, double& carried_slip, double& carried_viscous) {
+                   Groups& old, bool keep_history, double match, double& carried_slip, double& carried_viscous,
+                   int form_pass) {
     using L = std::tuple_element_t<index_of_parameters<Params>(), std::tuple<Laws...>>;
     auto& g = std::get<Group<L>>(groups_);
     const auto& b = model_->bodies;
+    const std::size_t a = first->a, bb = first->b;
+    const Group<L>* o = nullptr;
+    std::size_t oc = 0;
+    if (keep_history) {
+      const auto& index = old_contacts_[law_index<L>()];
+      if (const auto it = index.find(pair_key(a, bb)); it != index.end()) {
+        o = &std::get<Group<L>>(old);
+        oc = it->second;
+      }
+    }
+    // form_pass 0: only contacts that will be in the field form; 1: only the others; -1: every contact.
+    if (form_pass >= 0) {
+      bool field_form = false;
+      if constexpr (Group<L>::has_field) field_form = o ? o->field_form[oc] != 0 : damping_.contact_field;
+      if (field_form != (form_pass == 0)) return;
+    }
     // Property index: reuse an identical parameter set.
     std::size_t p = 0;
     while (p < g.properties.size() && !(g.properties[p] == params)) ++p;
@@ -741,7 +763,6 @@ class Simulation {
       if (p >= 65535) throw InvalidArgument("simulation: more than 65535 different contact property sets");
       g.properties.push_back(params);
     }
-    const std::size_t a = first->a, bb = first->b;
     // The frame of the CPs' areas: the origin at their centroid, t1 along a principal axis (AreaMoments). The
     // plane coordinates stay small, and a Maxwell field's stiffness is diagonal (damping::Maxwell::contact_stiffness).
     Vec3 origin = Vec3::Zero();
@@ -764,15 +785,6 @@ class Simulation {
       t1 = (std::cos(turn) * t1 + std::sin(turn) * t2).normalized();
     }
     const Vec3 t2 = n.cross(t1);
-    const Group<L>* o = nullptr;
-    std::size_t oc = 0;
-    if (keep_history) {
-      const auto& index = old_contacts_[law_index<L>()];
-      if (const auto it = index.find(pair_key(a, bb)); it != index.end()) {
-        o = &std::get<Group<L>>(old);
-        oc = it->second;
-      }
-    }
     const ContactFrame old_frame = o ? frame(*o, oc) : ContactFrame{};
     // A branch field (Maxwell) continues on the new contact, moved to its origin and frame; a contact whose CPs
     // had their own branch states passes them on CP by CP (below).
@@ -924,32 +936,6 @@ class Simulation {
   /// `lane` of the contact pass's resultants.
   [[gnu::always_inline]] static void add_to_lane(Lanes (&resultant)[6], std::size_t lane, const std::array<double, 6>& r) {
     for (std::size_t j = 0; j < 6; ++j) resultant[j].set(lane, resultant[j][lane] + r[j]);
-  }
-
-  /// A contact with a field whose CPs keep their own branch states (field_form 0, after a CP released its
-  /// branches; contact_pass_of): their viscous stresses, after the law has updated every CP's history, added to
-  /// the lane's resultants.
-  template <class G>
-  void add_own_branch_forces(G& g, std::size_t c, const Lanes (&motion)[6], std::size_t lane, double increment_dt,
-                             Lanes (&resultant)[6]) {
-    using L = typename G::LawType;
-    const auto& p = g.properties[g.property[c]];
-    const double kn = L::normal_stiffness(p);
-    const double ks = L::shear_stiffness(p);
-    const double du0_n = motion[0][lane], du0_1 = motion[1][lane], du0_2 = motion[2][lane];
-    const double w_n = motion[3][lane], w_1 = motion[4][lane], w_2 = motion[5][lane];
-    double fn = 0, f1 = 0, f2 = 0, mn = 0, m1 = 0, m2 = 0;
-    for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k) {
-      const double x1 = g.s1[k], x2 = g.s2[k];
-      const std::array<double, 3> e{-(du0_n + x2 * w_1 - x1 * w_2), -(du0_1 - x2 * w_n), -(du0_2 + x1 * w_n)};
-      double dissipated = 0.0;
-      const auto v = damping_.spring_stresses(g.spring_state[k], kn, ks, e, increment_dt, L::damping_active(p, g.history[k]),
-                                              dissipated);
-      const double area = g.area[k];
-      add_cp_force(x1, x2, area * v[0], area * v[1], area * v[2], fn, f1, f2, mn, m1, m2);
-      g.viscous_dissipation[k] += area * dissipated;
-    }
-    add_to_lane(resultant, lane, {fn, f1, f2, mn, m1, m2});
   }
 
   /// A contact in the field form some of whose CPs failed or opened in this step (contact_pass_of): those CPs
@@ -1113,6 +1099,8 @@ class Simulation {
         if constexpr (AdvanceFields) {
           if (forms == all_in_field_form) [[likely]]
             damping.advance_field(field[lg], motion);
+          else if (forms == 0)  // four contacts whose CPs keep their own branch states (or none)
+            for (auto& f : field_sum) f = Lanes::zero();
           else
             damping.advance_field(field[lg], motion, keep(), field_sum);
         } else {
@@ -1136,17 +1124,22 @@ class Simulation {
         // contact's generalised elongation increment q = (-du0, -w) through G q (G the contact's stiffness, diagonal
         // in the frame of the CPs' areas); the field's force on the contact is sum_i F_i, added to the resultants
         // after the CP loops, and its tractions at the CPs are evaluated only when asked for
-        // (ContactGroup::traction_at). The CP loop runs the law only, has no branch on the form and only notes
-        // whether a CP failed or opened. A contact whose CPs keep their own branch states (field_form 0, after a CP
-        // released its branches) adds them after the CP loops (add_own_branch_forces), so that this loop is the same
-        // for both forms.
+        // (ContactGroup::traction_at). For such a contact the CP loop runs the law only and notes whether a CP
+        // failed or opened. A contact whose CPs keep their own branch states (field_form 0, after a CP released its
+        // branches) updates them in its CP loop, in the same pass over the CPs (a second pass after the CP loops
+        // read every CP twice: on the damaged vault, where nearly every contact has a released CP, 20 % slower).
         [[maybe_unused]] bool inactive = false;
         // The CP loop through restrict parameters: GCC honours restrict on parameters, not on the local pointers above,
         // and without it guards the loop with a run-time check that the histories do not overlap the CPs' coordinates.
-        [&](const double* __restrict const point_1, const double* __restrict const point_2,
+        // `own`: the contact's CPs keep their own branch states (a contact with a field after a CP released its
+        // branches), updated in this loop; the contacts of a group are ordered by form (assign_contacts), so that the
+        // choice per contact is predicted.
+        const auto cp_loop = [&](auto own, const double* __restrict const point_1, const double* __restrict const point_2,
             const double* __restrict const point_area, typename G::History* __restrict const point_history,
             typename G::SpringState* __restrict const point_spring, double* __restrict const point_slip,
             double* __restrict const point_viscous) __attribute__((always_inline)) {
+          constexpr bool own_branches = decltype(own)::value;
+          constexpr bool viscous_here = cp_viscous || own_branches;
           for (std::uint32_t k = begin; k < end; ++k) {
             const double x1 = point_1[k], x2 = point_2[k];
             const double du_n = du0_n + x2 * w_1 - x1 * w_2;
@@ -1158,7 +1151,9 @@ class Simulation {
             // Spring elongations in the sense of the stresses: closing the gap compresses, shear stress opposes du_s.
             [[maybe_unused]] const std::array<double, 3> e{-du_n, -du_s[0], -du_s[1]};
             std::array<double, 3> v{0.0, 0.0, 0.0};  // viscous stresses, Pa
-            if constexpr (G::has_field) {
+            if constexpr (own_branches) {
+              v = damping.spring_stresses(point_spring[k], kn, ks, e, increment_dt, active, dissipated);
+            } else if constexpr (G::has_field) {
               inactive = inactive || !active;
             } else if constexpr (requires { damping.spring_stresses(point_spring[k], kn, ks, e, increment_dt, active, dissipated); }) {
               v = damping.spring_stresses(point_spring[k], kn, ks, e, increment_dt, active, dissipated);
@@ -1172,7 +1167,7 @@ class Simulation {
             // Policies without viscous stresses at the CP do not add v's zeros (x + 0.0 is not x for x = -0.0, so the
             // compiler keeps the additions).
             double sn = r.normal_stress, s1 = r.shear_stress[0], s2 = r.shear_stress[1];
-            if constexpr (cp_viscous) {
+            if constexpr (viscous_here) {
               sn += v[0];
               s1 += v[1];
               s2 += v[2];
@@ -1180,9 +1175,17 @@ class Simulation {
             add_cp_force(x1, x2, area * sn, area * s1, area * s2, fn, f1, f2, mn, m1, m2);
             // Only what can be non-zero is stored: a law or a policy that never dissipates costs no memory traffic here.
             if constexpr (!std::is_same_v<L, contact::Elastic>) point_slip[k] += area * r.dissipated;
-            if constexpr (cp_viscous) point_viscous[k] += area * dissipated;
+            if constexpr (viscous_here) point_viscous[k] += area * dissipated;
           }
-        }(plane_1, plane_2, area_of, history, spring_state, slip_dissipation, viscous_dissipation);
+        };
+        if constexpr (G::has_field) {
+          if (field_form[c]) [[likely]]
+            cp_loop(std::false_type{}, plane_1, plane_2, area_of, history, spring_state, slip_dissipation, viscous_dissipation);
+          else
+            cp_loop(std::true_type{}, plane_1, plane_2, area_of, history, spring_state, slip_dissipation, viscous_dissipation);
+        } else {
+          cp_loop(std::false_type{}, plane_1, plane_2, area_of, history, spring_state, slip_dissipation, viscous_dissipation);
+        }
         if constexpr (G::has_field) released |= static_cast<unsigned>(inactive) << lane;
         resultant[0].set(lane, fn);
         resultant[1].set(lane, f1);
@@ -1200,12 +1203,9 @@ class Simulation {
           for (std::size_t j = 0; j < 6; ++j) resultant[j] += field_sum[j];
         }
         if (forms != all_in_field_form || released != 0) [[unlikely]] {
-          for (std::size_t lane = 0; lane < used; ++lane) {
-            if (!field_form[first + lane])
-              add_own_branch_forces(g, first + lane, motion, lane, increment_dt, resultant);
-            else if (released >> lane & 1u)
+          for (std::size_t lane = 0; lane < used; ++lane)
+            if (field_form[first + lane] && (released >> lane & 1u))
               release_field<AdvanceFields>(g, first + lane, motion, lane, resultant);
-          }
         }
       }
       const Triple f = combine(n, t1, t2, resultant[0], resultant[1], resultant[2]);
