@@ -80,7 +80,7 @@ struct RunCommand {
     app.add_option("--frequency", o.frequency_hz, "mass: centre frequency; stiffness: frequency of --zeta, Hz")->capture_default_str();
     app.add_option("--band", band, "maxwell: the band of the fit; rayleigh: its two frequencies, Hz")->expected(2)->capture_default_str();
     app.add_option("--branches", o.branches, "maxwell: number of branches, 1..4")->capture_default_str();
-    app.add_option("--target-dt", o.target_dt, "timestep of the dynamic run by partial density scaling, s (0: the largest whose density scaling adds at most --mass-increase % of the mass)")
+    app.add_option("--target-dt", o.target_dt, "timestep of the dynamic run, s: above the unscaled one by partial density scaling, below it as given (0: the largest whose density scaling adds at most --mass-increase % of the mass)")
         ->capture_default_str();
     app.add_option("--mass-increase", o.default_mass_increase_percent, "mass that the automatic timestep may add by density scaling, %")
         ->capture_default_str();

@@ -109,32 +109,6 @@ typename Sim::PropertyFunction vault_properties(const models::CrossVault& v) {
   };
 }
 
-/// Added mass (kg) that partial density scaling to `target` (s) would need: every free rigid block and free node whose
-/// own limit (eq. 1-3 with the damping factor of eq. 11/20) is below the target is made heavier.
-template <class Sim, class Factor>
-double density_scaling_mass(const Sim& sim, double target, Factor timestep_factor) {
-  const auto& b = sim.model().bodies;
-  std::vector<double> kt, kr, kn;
-  sim.stiffnesses(kt, kr, kn);
-  auto limit = [&](double omega) { return Sim::default_safety_factor * 2.0 / omega * timestep_factor(omega); };
-  double lo = 1e-12, hi = 1e15;
-  for (int it = 0; it < 200; ++it) {
-    const double mid = std::sqrt(lo * hi);
-    (limit(mid) > target ? lo : hi) = mid;
-  }
-  const double omega2 = lo * lo;
-  double added = 0;
-  for (std::size_t i = 0; i < b.size(); ++i) {
-    if (b.motion[i] != model::Motion::free) continue;
-    const double factor = std::max({1.0, kt[i] / (omega2 * b.mass[i]), kr[i] / (omega2 * b.principal_inertia[i].minCoeff())});
-    added += b.mass[i] * (factor - 1.0);
-  }
-  const auto& nd = sim.model().deformable.nodes;
-  for (std::size_t i = 0; i < nd.size(); ++i)
-    if ((nd.fixity[i] & 7) != 7) added += std::max(0.0, kn[i] / omega2 - nd.mass[i]);
-  return added;
-}
-
 /// Static equilibrium under gravity with local damping (DESIGN §4): static, so every block takes the mass that gives
 /// one common timestep (3DEC's static mass scaling); the real masses are back when it returns.
 template <class Settle>
@@ -256,24 +230,23 @@ void with_settled_vault(const VaultStudyOptions& o, VaultStudyResult& r, F&& f,
     auto factor = [&](double omega) { return policy.timestep_factor(omega); };
     const double free_mass = r.model.free_mass;
     {
-      // Local damping leaves the critical timestep 2 / omega_max (eq. 1); the dynamic policy multiplies it by its
-      // factor at omega_max (eq. 11, eq. 20).
-      const double omega_max = 2.0 / settle.critical_timestep();
+      // The dynamic policy multiplies 2 / omega_max (eq. 1) by its factor at omega_max (eq. 11, eq. 20).
+      const double omega_max = settle.omega_max();
       r.timestep.damping_factor = factor(omega_max);
-      r.timestep.critical_unscaled = settle.critical_timestep() * r.timestep.damping_factor;
+      r.timestep.critical_unscaled = 2.0 / omega_max * r.timestep.damping_factor;
     }
-    const double unscaled = Settle::default_safety_factor * r.timestep.critical_unscaled;
+    const double unscaled = settle.safety_factor() * r.timestep.critical_unscaled;
     double target = o.target_dt;
     if (target == 0) {
       double lo = unscaled, hi = 1e-3;
       for (int it = 0; it < 60; ++it) {
         const double mid = std::sqrt(lo * hi);
-        (100 * detail::density_scaling_mass(settle, mid, factor) / free_mass <= o.default_mass_increase_percent ? lo : hi) = mid;
+        (100 * settle.density_scaling_mass(mid, factor) / free_mass <= o.default_mass_increase_percent ? lo : hi) = mid;
       }
       target = lo;
     }
     if (target > unscaled) {
-      const double percent = 100 * detail::density_scaling_mass(settle, target, factor) / free_mass;
+      const double percent = 100 * settle.density_scaling_mass(target, factor) / free_mass;
       if (percent > o.max_mass_increase_percent)
         throw InvalidArgument("cross vault study: --target-dt " + models::detail::num(target) + " s needs " +
                               models::detail::num(percent) + " % more mass by density scaling, above --max-mass-increase " +
@@ -295,6 +268,7 @@ void with_settled_vault(const VaultStudyOptions& o, VaultStudyResult& r, F&& f,
     }
 
     Dynamic sim(settle, policy);
+    if (!resuming && target < sim.timestep()) sim.set_timestep(target);  // a --target-dt below the unscaled one: run at it
     if (!resuming && target > sim.timestep()) {
       const std::vector<double> real_mass = model.bodies.mass, real_node_mass = model.deformable.nodes.mass;
       r.timestep.scaling = sim.scale_density_to(target);

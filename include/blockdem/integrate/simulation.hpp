@@ -15,6 +15,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <unordered_map>
@@ -30,6 +31,7 @@
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
 #include "blockdem/integrate/contact_group.hpp"
+#include "blockdem/integrate/frequency_bound.hpp"
 #include "blockdem/io/checkpoint.hpp"
 #include "blockdem/kinematics/deformable.hpp"
 #include "blockdem/model/contact_detection.hpp"
@@ -115,24 +117,76 @@ class Simulation {
     mixed_ = other.mixed_ && (!model_->deformable.empty() || other.scaled_rigid_blocks());
     if (mixed_) deformable_.take_over(other.deformable_, *model_);
     time_ = other.time_;
-    set_timestep(std::min(other.dt_, default_timestep()));
+    // The other's timestep if one was chosen below its default (and below this policy's), else this policy's default.
+    const bool chosen = other.dt_ < other.default_timestep() * (1 - 1e-12);
+    set_timestep(chosen ? std::min(other.dt_, default_timestep()) : default_timestep());
   }
 
-  /// Eq. 1 is exact for one block on its joints but not an upper bound for chains of blocks; hence a margin.
-  static constexpr double default_safety_factor = 0.5;
+  /// The margin of the timestep below the critical one, by how omega_max is found (eq. 1). Models of rigid blocks
+  /// only: the block Gershgorin bound (FrequencyBound), an upper bound for the present contacts; the margin is for
+  /// the stiffness that the contacts gain between two estimates (re-detection in impacts). Models with nodes, and
+  /// static masses: the per-node and per-block estimate of eq. 1-3, exact for one block or node on fixed supports
+  /// but not an upper bound for a chain of them (by up to a factor 2 on the timestep).
+  static constexpr double bound_safety_factor = 0.8;
+  static constexpr double estimate_safety_factor = 0.5;
+
+  /// Whether omega_max comes from FrequencyBound (a model of rigid blocks, not under static mass scaling).
+  bool bounded_frequency() const { return model_->deformable.nodes.size() == 0 && !static_masses_; }
+  double safety_factor() const { return bounded_frequency() ? bound_safety_factor : estimate_safety_factor; }
 
   /// The safety factor times the critical timestep; 1e-4 s while no block has a contact.
   double default_timestep() const {
     const double critical = critical_timestep();
-    return std::isfinite(critical) ? default_safety_factor * critical : 1e-4;
+    return std::isfinite(critical) ? safety_factor() * critical : 1e-4;
   }
 
   // ---- timestep (eq. 1-3, 11, 20) ----
 
-  /// Critical timestep 2 / omega_max (eq. 1) with omega_max = max over free blocks of sqrt(k / m) for translation
-  /// and sqrt(k r^2 / I_min) for rotation, k the sum of max(k_n, k_s) A of the block's contact points (eq. 2-3),
-  /// times the damping policy's factor (eq. 11, eq. 20). Infinite if no free block has a contact.
+  /// Critical timestep 2 / omega_max (eq. 1) times the damping policy's factor (eq. 11, eq. 20); infinite if no
+  /// free block has a contact. omega_max: for a model of rigid blocks the upper bound of FrequencyBound; with nodes
+  /// (or static masses) the largest of sqrt(k / m) over the nodes (eq. 2-3) and over the free blocks sqrt(k / m) for
+  /// translation and sqrt(k r^2 / I_min) for rotation, k the sum of max(k_n, k_s) A of their contact points.
   double critical_timestep() const {
+    const double omega = omega_max();
+    if (omega == 0) return std::numeric_limits<double>::infinity();
+    return 2.0 / omega * damping_.timestep_factor(omega);
+  }
+
+  /// omega_max of eq. 1 (rad/s), without the damping policy: the bound or the estimate (see critical_timestep()).
+  double omega_max() const { return bounded_frequency() ? frequency_bound().omega_max() : estimated_omega_max(); }
+
+  /// The upper bound on omega_max of a model of rigid blocks for the present contacts, trusses and masses.
+  FrequencyBound frequency_bound() const {
+    const auto& b = model_->bodies;
+    FrequencyBound bound(b);
+    for_each_group([&](const auto& g) {
+      using L = typename std::remove_cvref_t<decltype(g)>::LawType;
+      for (std::size_t c = 0; c < g.contacts(); ++c) {
+        const auto& p = g.properties[g.property[c]];
+        const double kn = L::normal_stiffness(p), ks = L::shear_stiffness(p);
+        const ContactFrame fr = frame(g, c);
+        const Mat3 nn = fr.n * fr.n.transpose();
+        const Mat3 per_area = kn * nn + ks * (Mat3::Identity() - nn);
+        bound.connect(g.body_a[c], g.body_b[c], [&](auto&& spring) {
+          for (std::uint32_t k = g.first_point[c]; k < g.first_point[c + 1]; ++k) {
+            const Vec3 x = fr.point(g.s1[k], g.s2[k]);
+            spring(x, x, Mat3(g.area[k] * per_area));
+          }
+        });
+      }
+    });
+    for (const auto& t : model_->deformable.trusses) {
+      const std::size_t a = t.end[0].block, bb = t.end[1].block;
+      const Vec3 xa = b.position[a] + rotate(b.rotation[a], t.end[0].body_point);
+      const Vec3 xb = b.position[bb] + rotate(b.rotation[bb], t.end[1].body_point);
+      const Vec3 e = (xb - xa).normalized();
+      bound.connect(a, bb, [&](auto&& spring) { spring(xa, xb, Mat3(t.axial_stiffness() * e * e.transpose())); });
+    }
+    return bound;
+  }
+
+  /// Eq. 1-3's estimate of omega_max (rad/s): per node and per rigid block on its own (see critical_timestep()).
+  double estimated_omega_max() const {
     const auto& b = model_->bodies;
     std::vector<double> k_translation, k_rotation, k_node;
     stiffnesses(k_translation, k_rotation, k_node);
@@ -146,8 +200,7 @@ class Simulation {
     const auto& nd = model_->deformable.nodes;
     for (std::size_t i = 0; i < k_node.size(); ++i)
       if ((nd.fixity[i] & 7) != 7) omega_max = std::max(omega_max, std::sqrt(k_node[i] / nd.mass[i]));  // eq. 1-3
-    if (omega_max == 0) return std::numeric_limits<double>::infinity();
-    return 2.0 / omega_max * damping_.timestep_factor(omega_max);
+    return omega_max;
   }
 
   /// Stiffness (N/m) on each rigid block (translation; rotation k r^2 in N m) and on each node: contacts, elements
@@ -178,13 +231,26 @@ class Simulation {
   }
 
   /// Partial density scaling to a target timestep (s, the timestep to run with: the safety factor times the
-  /// critical one): every free node and free rigid block whose own limit 2 safety f / sqrt(k / m) is below the target
-  /// gets just the mass (rigid blocks: mass and inertia, by one factor) that brings it to the target; the others keep
-  /// theirs. Weights stay those of the real masses. Sets the timestep to the target and reports what was added.
-  /// Call before stepping (the energy reference is taken at the first step). Throws InvalidArgument if the target is
-  /// not positive and finite.
-  DensityScaling scale_density_to(double target_dt, double safety_factor = default_safety_factor) {
+  /// critical one): every free node and free rigid block whose own limit is below the target gets just the mass
+  /// (rigid blocks: mass and inertia, by one factor) that brings it to the target; the others keep theirs. A block's
+  /// own limit: its row of FrequencyBound (a model of rigid blocks; its neighbours as they are, so that scaling
+  /// them too only lowers it), else 2 safety f / sqrt(k / m) as in critical_timestep(). Weights stay those of the
+  /// real masses. Sets the timestep to the target and reports what was added. Call before stepping (the energy
+  /// reference is taken at the first step). Throws InvalidArgument if the target is not positive and finite.
+  DensityScaling scale_density_to(double target_dt) { return scale_density_to(target_dt, safety_factor()); }
+  DensityScaling scale_density_to(double target_dt, double safety_factor) {
     return scale_masses(target_dt, safety_factor, MassRule::raise_only);
+  }
+
+  /// The mass (kg) that scale_density_to(target_dt) would add, the model left as it is; `timestep_factor(omega)`
+  /// in place of the damping policy's (eq. 11, eq. 20), for the policy of a simulation still to come.
+  template <class Factor>
+  double density_scaling_mass(double target_dt, Factor timestep_factor) const {
+    const MassPlan plan = plan_masses(target_dt, safety_factor(), MassRule::raise_only, timestep_factor);
+    double added = 0;
+    for (std::size_t i = 0; i < plan.block_mass.size(); ++i) added += plan.block_mass[i] - model_->bodies.mass[i];
+    for (std::size_t i = 0; i < plan.node_mass.size(); ++i) added += plan.node_mass[i] - model_->deformable.nodes.mass[i];
+    return added;
   }
 
   /// Static mass scaling (3DEC's for static solutions; statics do not depend on the masses): every free node gets
@@ -192,14 +258,14 @@ class Simulation {
   /// free rigid block the mass of its translational limit and the inertia (its principal moments by one factor, from
   /// the real ones) of its rotational limit: all degrees of freedom with a stiffness share one frequency, and the
   /// local damping (damping::Local) brings them to rest together. Those without contact stiffness (or fixed) keep
-  /// their real masses. Weights stay those of the real masses. Sets the timestep to the target and reports what was
-  /// changed (added_mass may be negative). For settling only: call restore_real_masses() before continuing with a
-  /// dynamic simulation (the continuation constructor refuses a simulation with static masses). Throws
+  /// their real masses. Weights stay those of the real masses. The timestep then follows eq. 1-3's estimate with
+  /// its margin (estimate_safety_factor), also for rigid blocks. Sets the timestep to the target and reports what
+  /// was changed (added_mass may be negative). For settling only: call restore_real_masses() before continuing with
+  /// a dynamic simulation (the continuation constructor refuses a simulation with static masses). Throws
   /// InvalidArgument if the target is not positive and finite.
-  DensityScaling scale_masses_for_statics(double target_dt, double safety_factor = default_safety_factor) {
-    const DensityScaling r = scale_masses(target_dt, safety_factor, MassRule::exact);
-    static_masses_ = true;
-    return r;
+  DensityScaling scale_masses_for_statics(double target_dt) { return scale_masses_for_statics(target_dt, estimate_safety_factor); }
+  DensityScaling scale_masses_for_statics(double target_dt, double safety_factor) {
+    return scale_masses(target_dt, safety_factor, MassRule::exact);
   }
 
   /// Gives every block and node back its real mass and inertia (bitwise those before any scaling) and updates the
@@ -554,6 +620,72 @@ class Simulation {
   /// scaling), or set every one to the mass of the target (static mass scaling).
   enum class MassRule { raise_only, exact };
 
+  /// The masses that scale_masses() sets (free nodes; rigid blocks: mass and principal inertia).
+  struct MassPlan {
+    std::vector<double> node_mass, block_mass;
+    std::vector<Vec3> block_inertia;
+  };
+
+  /// The rigid blocks' real masses and inertias (only the mixed step keeps them apart from the present ones).
+  const std::vector<double>& real_block_masses() const { return mixed_ ? deformable_.rigid_real_mass : model_->bodies.mass; }
+  const std::vector<Vec3>& real_block_inertias() const {
+    return mixed_ ? deformable_.rigid_real_inertia : model_->bodies.principal_inertia;
+  }
+
+  template <class Factor>
+  MassPlan plan_masses(double target_dt, double safety_factor, MassRule rule, Factor timestep_factor) const {
+    const auto& b = model_->bodies;
+    const auto& nd = model_->deformable.nodes;
+    // omega_t with safety 2 f(omega_t) / omega_t = target (f: eq. 11 or eq. 20), by bisection in log omega.
+    auto limit = [&](double omega) { return safety_factor * 2.0 / omega * timestep_factor(omega); };
+    double lo = 1e-12, hi = 1e15;
+    for (int it = 0; it < 200; ++it) {
+      const double mid = std::sqrt(lo * hi);
+      (limit(mid) > target_dt ? lo : hi) = mid;
+    }
+    const double margin = 1.0 + 1e-9;
+    const double omega2 = lo * lo / margin;
+    MassPlan plan{nd.mass, b.mass, b.principal_inertia};
+    const bool bounded = rule == MassRule::raise_only && bounded_frequency();
+    std::vector<double> kt, kr, kn;
+    if (!bounded) stiffnesses(kt, kr, kn);
+    for (std::size_t i = 0; i < kn.size(); ++i) {
+      if ((nd.fixity[i] & 7) == 7) continue;
+      const double required = kn[i] / omega2;
+      plan.node_mass[i] = rule == MassRule::raise_only ? std::max(nd.mass[i], required) : (kn[i] > 0 ? required : nd.real_mass[i]);
+    }
+    const auto& real_mass = real_block_masses();
+    const auto& real_inertia = real_block_inertias();
+    const std::optional<FrequencyBound> bound = bounded ? std::optional<FrequencyBound>(frequency_bound()) : std::nullopt;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      if (b.motion[i] != model::Motion::free || model_->deformable.is_deformable(i)) continue;
+      const bool translates = (b.fixity[i] & 7) != 7;
+      const bool turns = (b.fixity[i] & model::Fixity::all_rotations) != model::Fixity::all_rotations;
+      double& mass = plan.block_mass[i];
+      Vec3& inertia = plan.block_inertia[i];
+      if (bounded) {
+        // mass and inertia times s: own / s + coupled / sqrt(s) <= omega_t^2, solved for x = 1 / sqrt(s)
+        const auto row = bound->row(i);
+        if (row.omega_squared() <= omega2) continue;
+        const double x = row.own > 0 ? (std::sqrt(row.coupled * row.coupled + 4 * row.own * omega2) - row.coupled) / (2 * row.own)
+                                     : omega2 / row.coupled;
+        const double factor = 1.0 / (x * x) * margin;
+        mass *= factor;
+        inertia *= factor;
+      } else if (rule == MassRule::raise_only) {
+        double factor = 1.0;
+        if (translates) factor = std::max(factor, kt[i] / (omega2 * mass));
+        if (turns) factor = std::max(factor, kr[i] / (omega2 * inertia.minCoeff()));
+        mass *= factor;
+        inertia *= factor;
+      } else {
+        mass = translates && kt[i] > 0 ? kt[i] / omega2 : real_mass[i];
+        inertia = turns && kr[i] > 0 ? Vec3(real_inertia[i] * (kr[i] / omega2 / real_inertia[i].minCoeff())) : real_inertia[i];
+      }
+    }
+    return plan;
+  }
+
   /// The mass scaling of scale_density_to() and scale_masses_for_statics(), by `rule`.
   DensityScaling scale_masses(double target_dt, double safety_factor, MassRule rule) {
     const std::string what = rule == MassRule::raise_only ? "density scaling" : "static mass scaling";
@@ -563,75 +695,51 @@ class Simulation {
       throw InvalidArgument(what + ": the safety factor must be in (0, 1], got " + std::to_string(safety_factor));
     auto& b = model_->bodies;
     auto& nd = model_->deformable.nodes;
+    DensityScaling r;
+    r.target_dt = target_dt;
+    r.dt_critical_unscaled = critical_timestep();
+    // Static masses: the one frequency without the policy's factor (Local's 1 / sqrt(1 + c) lies inside the
+    // estimate's margin: omega dt = 2 safety = 1 < 2 / sqrt(1.8) for a block on its own).
+    const MassPlan plan = plan_masses(target_dt, safety_factor, rule, [&](double omega) {
+      return rule == MassRule::exact ? 1.0 : damping_.timestep_factor(omega);
+    });
     if (!mixed_) {  // the weight correction of scaled rigid blocks runs in the mixed path, which keeps the real masses
       mixed_ = true;
       deformable_.setup(*model_);
     }
-    DensityScaling r;
-    r.target_dt = target_dt;
-    r.dt_critical_unscaled = critical_timestep();
-    std::vector<double> kt, kr, kn;
-    stiffnesses(kt, kr, kn);
-    // omega_t with safety 2 f(omega_t) / omega_t = target (f: eq. 11 or eq. 20), by bisection in log omega.
-    auto limit = [&](double omega) { return safety_factor * 2.0 / omega * damping_.timestep_factor(omega); };
-    double lo = 1e-12, hi = 1e15;
-    for (int it = 0; it < 200; ++it) {
-      const double mid = std::sqrt(lo * hi);
-      (limit(mid) > target_dt ? lo : hi) = mid;
-    }
-    const double omega2 = lo * lo;
-    const double margin = 1.0 + 1e-9;
     const auto factor_range = [&](double factor) {
       r.max_density_scaling_factor = std::max(r.max_density_scaling_factor, factor);
       r.min_density_scaling_factor = std::min(r.min_density_scaling_factor, factor);
     };
-    for (std::size_t i = 0; i < kn.size(); ++i) {
+    for (std::size_t i = 0; i < nd.size(); ++i) {
       if ((nd.fixity[i] & 7) == 7) continue;
-      const double required = kn[i] / omega2 * margin;
-      const double mass = rule == MassRule::raise_only ? std::max(nd.mass[i], required)
-                                                       : (kn[i] > 0 ? required : nd.real_mass[i]);
-      if (mass != nd.mass[i]) {
-        nd.mass[i] = mass;
-        deformable_.node_inverse_mass[i] = 1.0 / mass;
+      if (plan.node_mass[i] != nd.mass[i]) {
+        nd.mass[i] = plan.node_mass[i];
+        deformable_.node_inverse_mass[i] = 1.0 / nd.mass[i];
         ++r.scaled_nodes;
       }
       r.real_mass += nd.real_mass[i];
       r.added_mass += nd.mass[i] - nd.real_mass[i];
       factor_range(nd.density_scaling_factor(i));
     }
+    const auto& real_mass = real_block_masses();
+    const auto& real_inertia = real_block_inertias();
     for (std::size_t i = 0; i < b.size(); ++i) {
       if (b.motion[i] != model::Motion::free || model_->deformable.is_deformable(i)) continue;
-      const bool translates = (b.fixity[i] & 7) != 7;
-      const bool turns = (b.fixity[i] & model::Fixity::all_rotations) != model::Fixity::all_rotations;
-      const double real_mass = deformable_.rigid_real_mass[i];
-      const Vec3& real_inertia = deformable_.rigid_real_inertia[i];
-      double mass = b.mass[i];
-      Vec3 inertia = b.principal_inertia[i];
-      if (rule == MassRule::raise_only) {
-        double factor = 1.0;
-        if (translates) factor = std::max(factor, kt[i] / (omega2 * mass) * margin);
-        if (turns) factor = std::max(factor, kr[i] / (omega2 * inertia.minCoeff()) * margin);
-        if (factor > 1.0) {
-          mass *= factor;
-          inertia *= factor;
-        }
-      } else {
-        mass = translates && kt[i] > 0 ? kt[i] / omega2 * margin : real_mass;
-        inertia = turns && kr[i] > 0 ? Vec3(real_inertia * (kr[i] / omega2 * margin / real_inertia.minCoeff())) : real_inertia;
-      }
-      if (mass != b.mass[i] || inertia != b.principal_inertia[i]) {
-        b.mass[i] = mass;
-        b.principal_inertia[i] = inertia;
-        inverse_mass_[i] = 1.0 / mass;
-        inverse_inertia_[i] = inertia.cwiseInverse();
+      if (plan.block_mass[i] != b.mass[i] || plan.block_inertia[i] != b.principal_inertia[i]) {
+        b.mass[i] = plan.block_mass[i];
+        b.principal_inertia[i] = plan.block_inertia[i];
+        inverse_mass_[i] = 1.0 / b.mass[i];
+        inverse_inertia_[i] = b.principal_inertia[i].cwiseInverse();
         ++r.scaled_blocks;
       }
-      r.real_mass += real_mass;
-      r.added_mass += mass - real_mass;
-      factor_range(mass / real_mass);
-      factor_range(inertia.minCoeff() / real_inertia.minCoeff());
+      r.real_mass += real_mass[i];
+      r.added_mass += b.mass[i] - real_mass[i];
+      factor_range(b.mass[i] / real_mass[i]);
+      factor_range(b.principal_inertia[i].minCoeff() / real_inertia[i].minCoeff());
     }
     r.mass_increase_percent = r.real_mass > 0 ? 100.0 * r.added_mass / r.real_mass : 0.0;
+    static_masses_ = rule == MassRule::exact;
     r.dt_critical = critical_timestep();
     set_timestep(target_dt);
     r.dt = dt_;
