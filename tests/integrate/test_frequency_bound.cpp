@@ -1,17 +1,22 @@
-// The critical timestep of a model of rigid blocks (eq. 1): the block Gershgorin bound on omega_max against the
-// eigenfrequencies of systems solved by hand and against the integrator's own stability limit.
+// The critical timestep (eq. 1): the block Gershgorin bound on omega_max against the eigenfrequencies of systems
+// solved by hand or by a dense eigensolver, and against the integrator's own stability limit; rigid blocks, nodes
+// of deformable blocks, contacts between them and trusses.
 
 #include <doctest/doctest.h>
 
 #include "../approx.hpp"
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 #include "blockdem/contact/elastic.hpp"
 #include "blockdem/damping/none.hpp"
 #include "blockdem/geometry/convex_polyhedron.hpp"
 #include "blockdem/integrate/simulation.hpp"
+#include "blockdem/model/deformable.hpp"
 #include "fixtures.hpp"
 
 using namespace blockdem;
@@ -112,4 +117,156 @@ TEST_CASE("timestep: partial density scaling by the bound brings every block's r
   const double x = (std::sqrt(1 + 8 * omega_t * omega_t * s.m / s.k) - 1) / 4;  // 1 / sqrt(s): 2 x^2 + x = omega_t^2 m / k
   CHECK(s.model.bodies.mass[1] == test::approx(s.m / (x * x)).epsilon(1e-6));
   CHECK(std::abs(sim.density_scaling_mass(target, [](double) { return 1.0; })) < 1e-9 * s.m);  // nothing left to add
+}
+
+namespace {
+
+/// A concrete-like deformable block 0.4 x 0.3 x 0.5 m (max edge 0.15 m) standing free in space, its bottom nodes
+/// fixed: nothing but the elements.
+struct Cantilever {
+  model::Model model;
+  std::size_t block = 0;
+  Cantilever() {
+    model.gravity = Vec3::Zero();
+    block = model.add_block(geometry::make_box(Vec3(0, 0, 0), Vec3(0.4, 0.3, 0.5)), 2400.0, "block", 1);
+    model.make_deformable(block, 0.15, model::IsotropicElastic(30e9, 0.2));
+    auto& nd = model.deformable.nodes;
+    for (std::size_t i = 0; i < nd.size(); ++i) nd.fixity[i] = nd.position[i].z() < 1e-9 ? 7 : 0;
+    std::mt19937 random(7);
+    std::uniform_real_distribution<double> velocity(-1e-3, 1e-3);
+    for (auto& v : nd.velocity) v = Vec3(velocity(random), velocity(random), velocity(random));
+    for (std::size_t i = 0; i < nd.size(); ++i)
+      if (nd.fixity[i]) nd.velocity[i].setZero();
+  }
+
+  /// omega_max of the free nodes' M^-1/2 K M^-1/2, K assembled here element by element (linear elasticity,
+  /// lambda = K - 2G/3), by a dense eigensolver.
+  double omega_max() const {
+    const auto& nd = model.deformable.nodes;
+    const auto& te = model.deformable.tetrahedra;
+    const auto n = static_cast<Eigen::Index>(3 * nd.size());
+    Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
+    for (std::size_t t = 0; t < te.size(); ++t) {
+      const auto& mat = model.deformable.materials[te.material[t]];
+      const double mu = mat.shear(), lambda = mat.bulk() - 2 * mu / 3;
+      const auto& g = te.gradient[t];
+      for (std::size_t i = 0; i < 4; ++i)
+        for (std::size_t j = 0; j < 4; ++j)
+          for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < 3; ++b)
+              k(3 * te.node[t][i] + a, 3 * te.node[t][j] + b) +=
+                  te.volume[t] * (lambda * g[i][a] * g[j][b] + mu * g[i][b] * g[j][a] + (a == b ? mu * g[i].dot(g[j]) : 0.0));
+    }
+    for (Eigen::Index r = 0; r < n; ++r)
+      for (Eigen::Index c = 0; c < n; ++c) {
+        const auto i = static_cast<std::size_t>(r / 3), j = static_cast<std::size_t>(c / 3);
+        const bool free = !nd.fixity[i] && !nd.fixity[j];
+        k(r, c) = free ? k(r, c) / std::sqrt(nd.mass[i] * nd.mass[j]) : 0.0;  // fixed nodes: left out
+      }
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(k, Eigen::EigenvaluesOnly);
+    return std::sqrt(solver.eigenvalues().maxCoeff());
+  }
+};
+
+/// Steps until the largest node displacement exceeds 1e6 times `initial` or `steps` are done; returns that
+/// largest displacement over `initial`.
+template <class S>
+double node_growth(S& sim, double initial, long long steps) {
+  const auto& nd = sim.model().deformable.nodes;
+  const auto x0 = nd.position;
+  double largest = 0;
+  for (long long i = 0; i < steps && largest < 1e6 * initial; ++i) {
+    sim.step();
+    for (std::size_t k = 0; k < nd.size(); ++k) largest = std::max(largest, (nd.position[k] - x0[k]).norm());
+  }
+  return largest / initial;
+}
+
+}  // namespace
+
+TEST_CASE("timestep: for a deformable block the bound lies above omega_max, which is the integrator's limit to 2 %") {
+  // Reference: the dense eigensolution of the assembled lumped-mass system, and the integrator's own stability.
+  Cantilever c;
+  Sim sim(c.model, damping::None{}, [](int, int) { return contact::Elastic::Parameters(1e10, 1e10); });
+  const double exact = c.omega_max(), bound = sim.frequency_bound().omega_max(), estimate = sim.estimated_omega_max();
+  MESSAGE("deformable block, " << c.model.deformable.nodes.size() << " nodes: omega_max " << exact << " rad/s, bound "
+                               << bound << " (" << bound / exact << "), eq. 2 estimate " << estimate << " ("
+                               << estimate / exact << ")");
+  CHECK(sim.bounded_frequency());
+  CHECK(bound >= exact * (1 - 1e-9));
+  CHECK(bound < 1.6 * exact);
+  // The bound's timestep with its margin is longer than the estimate's with its own.
+  CHECK(Sim::bound_safety_factor / bound > Sim::estimate_safety_factor / estimate);
+  auto run_at = [&](double dt) {
+    Cantilever d;
+    Sim run(d.model, damping::None{}, [](int, int) { return contact::Elastic::Parameters(1e10, 1e10); });
+    run.set_timestep(dt, TimestepCheck::unchecked);
+    return node_growth(run, 1e-3 * dt, 3000);
+  };
+  CHECK(run_at(0.98 * 2 / exact) < 1e3);
+  CHECK(run_at(1.02 * 2 / exact) > 1e5);
+  CHECK(run_at(sim.critical_timestep()) < 1e3);
+}
+
+namespace {
+
+/// Two deformable blocks, one on the other, on a free rigid block on a fixed base, and a steel tie from a node of
+/// the top block to the rigid one: element, node-face (rigid and deformable) and rigid-rigid contacts, a truss.
+struct Mixed {
+  model::Model model;
+  Mixed() {
+    model.gravity = Vec3::Zero();
+    model.add_block(geometry::make_box(Vec3(-1, -1, -0.5), Vec3(1, 1, 0)), 2400.0, "base", 0, model::Motion::fixed);
+    const auto rigid = model.add_block(geometry::make_box(Vec3(-0.4, -0.3, 0), Vec3(0.4, 0.3, 0.2)), 2400.0, "rigid", 1);
+    const auto lower = model.add_block(geometry::make_box(Vec3(-0.3, -0.2, 0.2), Vec3(0.3, 0.2, 0.5)), 2400.0, "lower", 1);
+    const auto upper = model.add_block(geometry::make_box(Vec3(-0.2, -0.2, 0.5), Vec3(0.2, 0.2, 0.8)), 2400.0, "upper", 1);
+    model.make_deformable(lower, 0.15, model::IsotropicElastic(20e9, 0.2));
+    model.make_deformable(upper, 0.15, model::IsotropicElastic(20e9, 0.2));
+    model.add_truss(model.block_end(rigid, Vec3(0.35, 0, 0.2)), model.node_end(model.nearest_node(upper, Vec3(0.2, 0, 0.8))), 5e-4,
+                    200e9, 7800, 0.0, "tie");
+    std::mt19937 random(11);
+    std::uniform_real_distribution<double> velocity(-1e-3, 1e-3);
+    for (auto& v : model.deformable.nodes.velocity) v = Vec3(velocity(random), velocity(random), velocity(random));
+    model.bodies.velocity[rigid] = Vec3(velocity(random), velocity(random), velocity(random));
+  }
+};
+
+}  // namespace
+
+TEST_CASE("timestep: for mixed rigid and deformable blocks with a tie the bound's timestep is stable, twice it is not") {
+  // The bound holds for the contacts between nodes, triangles and rigid faces and for a truss between a node and a
+  // block: the integrator is stable at its critical timestep (no margin), and diverges at twice it (the bound is
+  // not loose by a factor 2).
+  Mixed s;
+  auto properties = [](int, int) { return contact::Elastic::Parameters(2e10, 1e10); };
+  Sim sim(s.model, damping::None{}, properties);
+  const double critical = sim.critical_timestep();
+  MESSAGE("mixed: " << s.model.deformable.nodes.size() << " nodes, " << sim.contact_points() << " CPs, bound dt " << critical
+                    << " s, eq. 1-3 estimate " << 2 / sim.estimated_omega_max() << " s");
+  CHECK(sim.bounded_frequency());
+  CHECK(sim.contact_points() > 0);
+  auto run_at = [&](double dt) {
+    Mixed t;
+    Sim run(t.model, damping::None{}, properties);
+    run.set_timestep(dt, TimestepCheck::unchecked);
+    return node_growth(run, 1e-3 * dt, 4000);
+  };
+  CHECK(run_at(critical) < 1e3);
+  CHECK(run_at(2 * critical) > 1e5);
+}
+
+TEST_CASE("timestep: partial density scaling of nodes by the bound reaches the target, stable there") {
+  Mixed s;
+  auto properties = [](int, int) { return contact::Elastic::Parameters(2e10, 1e10); };
+  Sim sim(s.model, damping::None{}, properties);
+  const double target = 1.5 * sim.timestep();
+  const auto r = sim.scale_density_to(target);
+  MESSAGE("mixed, density scaled to 1.5 dt: +" << r.mass_increase_percent << " % mass, " << r.scaled_nodes << " nodes, "
+                                            << r.scaled_blocks << " blocks");
+  CHECK(sim.timestep() == target);
+  CHECK(r.scaled_nodes > 0);
+  CHECK(sim.frequency_bound().omega_max() <= 2 * Sim::bound_safety_factor / target);
+  CHECK(std::abs(sim.density_scaling_mass(target, [](double) { return 1.0; })) < 1e-9 * r.real_mass);
+  sim.set_timestep(sim.critical_timestep(), TimestepCheck::unchecked);
+  CHECK(node_growth(sim, 1e-3 * target, 4000) < 1e3);
 }

@@ -1,25 +1,31 @@
 #pragma once
-// An upper bound on the highest eigenfrequency omega_max of a model of rigid blocks on elastic springs (contact
-// points, trusses): eq. 1's omega_max "an upper bound to the highest eigenfrequency of the linear elastic system".
+// An upper bound on the highest eigenfrequency omega_max of a model of rigid blocks, nodes of deformable blocks and
+// the elastic springs between them (contact points, trusses, constant-strain tetrahedra): eq. 1's omega_max "an
+// upper bound to the highest eigenfrequency of the linear elastic system".
 //
-// The linearised system is M u'' + K u = 0 with six degrees of freedom per free block (translation, rotation in
-// the world frame). omega_max^2 is the largest eigenvalue of A = M^-1/2 K M^-1/2, and the block Gershgorin theorem
-// (Feingold and Varga 1962) bounds it by the largest row of blocks:
+// The linearised system is M u'' + K u = 0 with six degrees of freedom per free rigid block (translation, rotation
+// in the world frame) and three per node. omega_max^2 is the largest eigenvalue of A = M^-1/2 K M^-1/2, and the
+// block Gershgorin theorem (Feingold and Varga 1962) bounds it by the largest row of blocks:
 //
-//     omega_max^2 <= max_i ( lambda_max(A_ii) + sum_j ||A_ij||_2 ),   A_ij = M_i^-1/2 K_ij M_j^-1/2 (6 x 6).
+//     omega_max^2 <= max_i ( lambda_max(A_ii) + sum_j ||A_ij||_2 ),   A_ij = M_i^-1/2 K_ij M_j^-1/2.
 //
-// A spring of stiffness D (3 x 3) between a point x_a of block a and x_b of block b stretches by
-// d = B_b u_b - B_a u_a with B = [I, -[x - c]x] (the point's velocity v + w x r); it adds B_a^T D B_a to K_aa,
-// B_b^T D B_b to K_bb and -B_a^T D B_b to K_ab. A fixed block's motion is prescribed: its springs count on the
-// diagonal of the free one only. Degrees of freedom fixed by a block's fixity are left out (M_i^-1/2 restricted to
-// the free ones). Unlike the per-block estimate max(k / m, k r^2 / I_min), which is exact for one block on fixed
-// supports but not a bound for a chain of blocks (two blocks on one spring vibrate at sqrt(2 k / m)), this one holds
-// for any assembly, so the timestep needs no margin for the assembly (on the rigid cross vault it lies 8 % above the
-// highest eigenfrequency found by power iteration).
+// A spring of stiffness D (3 x 3) stretches by d = sum_p c_p B_p u_p over the points it joins (c_p = -w_p on its
+// first side and +w_p on its second, w the weights of a point inside a triangle of nodes), B = [I, -[x - c]x] for a
+// world point x of a block (its velocity v + w x r) and B = I for a node; it adds c_p c_q B_p^T D B_q to K_pq. A
+// tetrahedron adds V (lambda g_i g_j^T + G g_j g_i^T + G (g_i . g_j) I) to K_ij (g the gradients of its shape
+// functions). A fixed block's motion is prescribed: its springs count on the diagonal of the free side only, and
+// fixed degrees of freedom are left out (M_i^-1/2 restricted to the free ones). Summing ||A_ij|| per spring or per
+// element instead of per pair only raises the bound. Unlike the per-block and per-node estimate of eq. 1-3, exact
+// for one block or node on fixed supports but not a bound for a chain of them (two blocks on one spring vibrate at
+// sqrt(2 k / m)), this holds for any assembly, so the timestep needs no margin for the assembly (on the rigid cross
+// vault it lies 8 % above the highest eigenfrequency found by power iteration).
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <initializer_list>
 #include <vector>
 
 #include "blockdem/core/types.hpp"
@@ -29,33 +35,34 @@ namespace blockdem {
 
 namespace detail {
 
-/// Eigenvalues (returned) and eigenvectors (columns of `vectors`) of a symmetric 6 x 6 matrix by cyclic Jacobi
+/// Eigenvalues (returned) and eigenvectors (columns of `vectors`) of a symmetric N x N matrix by cyclic Jacobi
 /// rotations (Golub and Van Loan, Sect. 8.5): small, exact to rounding, free of the vectorised paths of a general
 /// solver.
-inline Eigen::Matrix<double, 6, 1> symmetric_eigen(Eigen::Matrix<double, 6, 6> a, Eigen::Matrix<double, 6, 6>* vectors = nullptr) {
-  Eigen::Matrix<double, 6, 6> v = Eigen::Matrix<double, 6, 6>::Identity();
+template <int N>
+Eigen::Matrix<double, N, 1> symmetric_eigen(Eigen::Matrix<double, N, N> a, Eigen::Matrix<double, N, N>* vectors = nullptr) {
+  Eigen::Matrix<double, N, N> v = Eigen::Matrix<double, N, N>::Identity();
   for (int sweep = 0; sweep < 50; ++sweep) {
     double off = 0, scale = 0;
-    for (int i = 0; i < 6; ++i)
-      for (int j = 0; j < 6; ++j) (i == j ? scale : off) += a(i, j) * a(i, j);
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j) (i == j ? scale : off) += a(i, j) * a(i, j);
     if (off <= 1e-30 * scale || off == 0) break;
-    for (int p = 0; p < 5; ++p)
-      for (int q = p + 1; q < 6; ++q) {
+    for (int p = 0; p < N - 1; ++p)
+      for (int q = p + 1; q < N; ++q) {
         if (a(p, q) == 0) continue;
         const double theta = (a(q, q) - a(p, p)) / (2 * a(p, q));
         const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
         const double c = 1 / std::sqrt(t * t + 1), s = t * c;
-        for (int k = 0; k < 6; ++k) {  // a <- a J
+        for (int k = 0; k < N; ++k) {  // a <- a J
           const double akp = a(k, p), akq = a(k, q);
           a(k, p) = c * akp - s * akq;
           a(k, q) = s * akp + c * akq;
         }
-        for (int k = 0; k < 6; ++k) {  // a <- J^T a
+        for (int k = 0; k < N; ++k) {  // a <- J^T a
           const double apk = a(p, k), aqk = a(q, k);
           a(p, k) = c * apk - s * aqk;
           a(q, k) = s * apk + c * aqk;
         }
-        for (int k = 0; k < 6; ++k) {
+        for (int k = 0; k < N; ++k) {
           const double vkp = v(k, p), vkq = v(k, q);
           v(k, p) = c * vkp - s * vkq;
           v(k, q) = s * vkp + c * vkq;
@@ -66,28 +73,57 @@ inline Eigen::Matrix<double, 6, 1> symmetric_eigen(Eigen::Matrix<double, 6, 6> a
   return a.diagonal();
 }
 
+/// The spectral norm ||a||_2 of a small matrix: the root of the largest eigenvalue of its smaller Gram matrix.
+template <int R, int C>
+double spectral_norm(const Eigen::Matrix<double, R, C>& a) {
+  if constexpr (R <= C) {
+    const Eigen::Matrix<double, R, R> gram = a * a.transpose();
+    return std::sqrt(std::max(symmetric_eigen<R>(gram).maxCoeff(), 0.0));
+  } else {
+    const Eigen::Matrix<double, C, C> gram = a.transpose() * a;
+    return std::sqrt(std::max(symmetric_eigen<C>(gram).maxCoeff(), 0.0));
+  }
+}
+
 }  // namespace detail
 
 class FrequencyBound {
  public:
   using Mat6 = Eigen::Matrix<double, 6, 6>;
 
-  /// For the blocks' present masses, inertias, orientations and fixities.
-  explicit FrequencyBound(const model::RigidBodies& b)
-      : bodies_(&b), scale_(b.size(), Mat6::Zero()), own_(b.size(), Mat6::Zero()), coupled_(b.size(), 0.0) {
+  /// One end point of a spring: a world point x of rigid block `index`, or node `index`, with weight w.
+  struct Point {
+    bool node = false;
+    std::size_t index = 0;
+    double weight = 1.0;
+    Vec3 x = Vec3::Zero();
+  };
+  static Point block_point(std::size_t block, const Vec3& x) { return {false, block, 1.0, x}; }
+  static Point node_point(std::size_t node, double weight = 1.0) { return {true, node, weight, Vec3::Zero()}; }
+
+  /// For the present masses, inertias, orientations and fixities of the free rigid blocks and of the nodes.
+  explicit FrequencyBound(const model::Model& m)
+      : bodies_(&m.bodies),
+        scale_(m.bodies.size(), Mat6::Zero()),
+        own_(m.bodies.size(), Mat6::Zero()),
+        coupled_(m.bodies.size(), 0.0),
+        node_scale_(m.deformable.nodes.size(), Vec3::Zero()),
+        node_own_(m.deformable.nodes.size(), Mat3::Zero()),
+        node_coupled_(m.deformable.nodes.size(), 0.0) {
+    const auto& b = m.bodies;
     for (std::size_t i = 0; i < b.size(); ++i) {
-      if (b.motion[i] != model::Motion::free) continue;
-      Mat6 m = Mat6::Zero();
-      m.topLeftCorner<3, 3>() = b.mass[i] * Mat3::Identity();
-      m.bottomRightCorner<3, 3>() = b.rotation[i] * b.principal_inertia[i].asDiagonal() * b.rotation[i].transpose();
+      if (b.motion[i] != model::Motion::free || m.deformable.is_deformable(i)) continue;
+      Mat6 mass = Mat6::Zero();
+      mass.topLeftCorner<3, 3>() = b.mass[i] * Mat3::Identity();
+      mass.bottomRightCorner<3, 3>() = b.rotation[i] * b.principal_inertia[i].asDiagonal() * b.rotation[i].transpose();
       for (int d = 0; d < 6; ++d)
         if (b.fixity[i] & (1u << d)) {  // a fixed degree of freedom: left out
-          m.row(d).setZero();
-          m.col(d).setZero();
-          m(d, d) = 1.0;
+          mass.row(d).setZero();
+          mass.col(d).setZero();
+          mass(d, d) = 1.0;
         }
       Mat6 vectors;
-      const Eigen::Matrix<double, 6, 1> values = detail::symmetric_eigen(m, &vectors);
+      const Eigen::Matrix<double, 6, 1> values = detail::symmetric_eigen<6>(mass, &vectors);
       scale_[i] = vectors * values.cwiseInverse().cwiseSqrt().asDiagonal() * vectors.transpose();
       for (int d = 0; d < 6; ++d)
         if (b.fixity[i] & (1u << d)) {
@@ -95,10 +131,15 @@ class FrequencyBound {
           scale_[i].col(d).setZero();
         }
     }
+    const auto& nd = m.deformable.nodes;
+    for (std::size_t n = 0; n < nd.size(); ++n)
+      for (int d = 0; d < 3; ++d)
+        if (!(nd.fixity[n] & (1u << d))) node_scale_[n][d] = 1.0 / std::sqrt(nd.mass[n]);
   }
 
-  /// One connection between blocks a and b (a contact's CPs, a truss): calls each(spring) where spring(x_a, x_b, D)
-  /// adds a spring of stiffness D (N/m, world frame) between the world points x_a on a and x_b on b.
+  /// One connection between rigid blocks a and b (a contact's CPs): calls each(spring) where spring(x_a, x_b, D)
+  /// adds a spring of stiffness D (N/m, world frame) between the world points x_a on a and x_b on b. The
+  /// connection's springs make one K_ab (a tighter bound than one per spring).
   template <class Each>
   void connect(std::size_t a, std::size_t b, Each&& each) {
     Mat6 k_ab = Mat6::Zero();
@@ -111,28 +152,75 @@ class FrequencyBound {
     });
     const Mat6 a_ab = scale_[a] * k_ab * scale_[b];
     if (a_ab.isZero(0.0)) return;
-    const double norm = std::sqrt(std::max(detail::symmetric_eigen(a_ab.transpose() * a_ab).maxCoeff(), 0.0));
+    const double norm = detail::spectral_norm<6, 6>(a_ab);
     coupled_[a] += norm;
     coupled_[b] += norm;
   }
 
-  /// A block's row of the bound, for its present mass: lambda_max(A_ii) and sum_j ||A_ij||_2 (rad^2/s^2). Scaling
-  /// the block's mass and inertia by s divides the first by s and the second by sqrt(s) (partial density scaling).
+  /// A spring of stiffness D (N/m, world frame) from the weighted sum of the points `from` to that of `to` (a truss
+  /// between blocks or nodes, a node's contact point on a block or inside a triangle of nodes).
+  void spring(std::initializer_list<Point> from, std::initializer_list<Point> to, const Mat3& d) {
+    std::array<Point, 8> p{};
+    std::array<double, 8> c{};
+    std::size_t count = 0;
+    for (const auto& x : from) p[count] = x, c[count++] = -x.weight;
+    for (const auto& x : to) p[count] = x, c[count++] = x.weight;
+    for (std::size_t i = 0; i < count; ++i)
+      for (std::size_t j = i; j < count; ++j) {
+        const double cc = c[i] * c[j];
+        if (i == j || same(p[i], p[j])) {
+          add_own(p[i], p[j], (i == j ? 1.0 : 2.0) * cc, d);
+          continue;
+        }
+        const double norm = std::abs(cc) * coupling_norm(p[i], p[j], d);
+        (p[i].node ? node_coupled_ : coupled_)[p[i].index] += norm;
+        (p[j].node ? node_coupled_ : coupled_)[p[j].index] += norm;
+      }
+  }
+
+  /// A constant-strain tetrahedron on `nodes` with shape-function gradients g (1/m), volume (m^3), bulk and shear
+  /// moduli (Pa): K_ij = V (lambda g_i g_j^T + G g_j g_i^T + G (g_i . g_j) I), lambda = K - 2 G / 3.
+  void tetrahedron(const std::array<std::uint32_t, 4>& nodes, const std::array<Vec3, 4>& g, double volume, double bulk,
+                   double shear) {
+    const double lambda = bulk - 2.0 * shear / 3.0;
+    for (std::size_t i = 0; i < 4; ++i)
+      for (std::size_t j = i; j < 4; ++j) {
+        const Mat3 k = volume * (lambda * g[i] * g[j].transpose() + shear * g[j] * g[i].transpose() +
+                                 shear * g[i].dot(g[j]) * Mat3::Identity());
+        if (i == j) {
+          node_own_[nodes[i]] += k;
+          continue;
+        }
+        const Mat3 a = node_scale_[nodes[i]].asDiagonal() * k * node_scale_[nodes[j]].asDiagonal();
+        const double norm = detail::spectral_norm<3, 3>(a);
+        node_coupled_[nodes[i]] += norm;
+        node_coupled_[nodes[j]] += norm;
+      }
+  }
+
+  /// A block's or a node's row of the bound, for its present mass: lambda_max(A_ii) and sum_j ||A_ij||_2
+  /// (rad^2/s^2). Scaling its mass (and a block's inertia) by s divides the first by s and the second by sqrt(s)
+  /// (partial density scaling).
   struct Row {
     double own = 0, coupled = 0;
     double omega_squared() const { return own + coupled; }
   };
   Row row(std::size_t i) const {
-    if (bodies_->motion[i] != model::Motion::free) return {};
+    if (scale_[i].isZero(0.0)) return {};
     const Mat6 a = scale_[i] * own_[i] * scale_[i];
-    const double own = detail::symmetric_eigen(a).maxCoeff();
-    return {std::max(own, 0.0), coupled_[i]};
+    return {std::max(detail::symmetric_eigen<6>(a).maxCoeff(), 0.0), coupled_[i]};
+  }
+  Row node_row(std::size_t n) const {
+    const Vec3& s = node_scale_[n];
+    const Mat3 a = s.asDiagonal() * node_own_[n] * s.asDiagonal();
+    return {std::max(detail::symmetric_eigen<3>(a).maxCoeff(), 0.0), node_coupled_[n]};
   }
 
-  /// The bound on omega_max (rad/s); 0 if no free block has a spring.
+  /// The bound on omega_max (rad/s); 0 if nothing free has a spring.
   double omega_max() const {
     double largest = 0;
     for (std::size_t i = 0; i < scale_.size(); ++i) largest = std::max(largest, row(i).omega_squared());
+    for (std::size_t n = 0; n < node_scale_.size(); ++n) largest = std::max(largest, node_row(n).omega_squared());
     return std::sqrt(largest);
   }
 
@@ -145,11 +233,36 @@ class FrequencyBound {
     m.rightCols<3>() << 0, r.z(), -r.y(), -r.z(), 0, r.x(), r.y(), -r.x(), 0;
     return m;
   }
+  static bool same(const Point& a, const Point& b) { return a.node == b.node && a.index == b.index; }
+
+  /// Adds c (B_a^T D B_b + B_b^T D B_a) / 2 to the diagonal block of the point's block or node (a and b on it).
+  void add_own(const Point& a, const Point& b, double c, const Mat3& d) {
+    if (a.node) {
+      node_own_[a.index] += c * d;
+      return;
+    }
+    const Eigen::Matrix<double, 3, 6> ba = motion_of(a.index, a.x), bb = motion_of(b.index, b.x);
+    const Mat6 k = ba.transpose() * d * bb;
+    own_[a.index] += 0.5 * c * (k + k.transpose());
+  }
+
+  /// ||M_a^-1/2 B_a^T D B_b M_b^-1/2||_2.
+  double coupling_norm(const Point& a, const Point& b, const Mat3& d) const {
+    if (a.node && b.node) return detail::spectral_norm<3, 3>(Mat3(node_scale_[a.index].asDiagonal() * d * node_scale_[b.index].asDiagonal()));
+    if (a.node) return coupling_norm(b, a, d);
+    const Eigen::Matrix<double, 3, 6> sa = motion_of(a.index, a.x) * scale_[a.index];
+    if (b.node) return detail::spectral_norm<6, 3>(Eigen::Matrix<double, 6, 3>(sa.transpose() * d * node_scale_[b.index].asDiagonal()));
+    const Eigen::Matrix<double, 3, 6> sb = motion_of(b.index, b.x) * scale_[b.index];
+    return detail::spectral_norm<6, 6>(Mat6(sa.transpose() * d * sb));
+  }
 
   const model::RigidBodies* bodies_;
-  std::vector<Mat6> scale_;  // M_i^-1/2 on the free degrees of freedom, 0 for fixed blocks
+  std::vector<Mat6> scale_;  // M_i^-1/2 on the free degrees of freedom, 0 for fixed and deformable blocks
   std::vector<Mat6> own_;    // K_ii
   std::vector<double> coupled_;
+  std::vector<Vec3> node_scale_;  // 1 / sqrt(m) on the free axes, 0 on the fixed ones
+  std::vector<Mat3> node_own_;
+  std::vector<double> node_coupled_;
 };
 
 }  // namespace blockdem

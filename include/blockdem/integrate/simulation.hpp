@@ -122,16 +122,16 @@ class Simulation {
     set_timestep(chosen ? std::min(other.dt_, default_timestep()) : default_timestep());
   }
 
-  /// The margin of the timestep below the critical one, by how omega_max is found (eq. 1). Models of rigid blocks
-  /// only: the block Gershgorin bound (FrequencyBound), an upper bound for the present contacts; the margin is for
-  /// the stiffness that the contacts gain between two estimates (re-detection in impacts). Models with nodes, and
-  /// static masses: the per-node and per-block estimate of eq. 1-3, exact for one block or node on fixed supports
-  /// but not an upper bound for a chain of them (by up to a factor 2 on the timestep).
+  /// The margin of the timestep below the critical one, by how omega_max is found (eq. 1). Dynamic masses: the
+  /// block Gershgorin bound (FrequencyBound), an upper bound for the present contacts, elements and trusses; the
+  /// margin is for the stiffness that the contacts gain between two estimates (re-detection in impacts). Static
+  /// masses (scale_masses_for_statics): the per-node and per-block estimate of eq. 1-3, exact for one block or node
+  /// on fixed supports but not an upper bound for a chain of them (by up to a factor 2 on the timestep).
   static constexpr double bound_safety_factor = 0.8;
   static constexpr double estimate_safety_factor = 0.5;
 
-  /// Whether omega_max comes from FrequencyBound (a model of rigid blocks, not under static mass scaling).
-  bool bounded_frequency() const { return model_->deformable.nodes.size() == 0 && !static_masses_; }
+  /// Whether omega_max comes from FrequencyBound (not under static mass scaling, whose masses follow the estimate).
+  bool bounded_frequency() const { return !static_masses_; }
   double safety_factor() const { return bounded_frequency() ? bound_safety_factor : estimate_safety_factor; }
 
   /// The safety factor times the critical timestep; 1e-4 s while no block has a contact.
@@ -143,9 +143,9 @@ class Simulation {
   // ---- timestep (eq. 1-3, 11, 20) ----
 
   /// Critical timestep 2 / omega_max (eq. 1) times the damping policy's factor (eq. 11, eq. 20); infinite if no
-  /// free block has a contact. omega_max: for a model of rigid blocks the upper bound of FrequencyBound; with nodes
-  /// (or static masses) the largest of sqrt(k / m) over the nodes (eq. 2-3) and over the free blocks sqrt(k / m) for
-  /// translation and sqrt(k r^2 / I_min) for rotation, k the sum of max(k_n, k_s) A of their contact points.
+  /// free block or node has a spring. omega_max: the upper bound of FrequencyBound; under static masses the largest
+  /// of sqrt(k / m) over the nodes (eq. 2-3) and over the free blocks sqrt(k / m) for translation and
+  /// sqrt(k r^2 / I_min) for rotation, k the sum of max(k_n, k_s) A of their contact points.
   double critical_timestep() const {
     const double omega = omega_max();
     if (omega == 0) return std::numeric_limits<double>::infinity();
@@ -155,10 +155,10 @@ class Simulation {
   /// omega_max of eq. 1 (rad/s), without the damping policy: the bound or the estimate (see critical_timestep()).
   double omega_max() const { return bounded_frequency() ? frequency_bound().omega_max() : estimated_omega_max(); }
 
-  /// The upper bound on omega_max of a model of rigid blocks for the present contacts, trusses and masses.
+  /// The upper bound on omega_max for the present contacts, elements, trusses and masses.
   FrequencyBound frequency_bound() const {
     const auto& b = model_->bodies;
-    FrequencyBound bound(b);
+    FrequencyBound bound(*model_);
     for_each_group([&](const auto& g) {
       using L = typename std::remove_cvref_t<decltype(g)>::LawType;
       for (std::size_t c = 0; c < g.contacts(); ++c) {
@@ -176,12 +176,14 @@ class Simulation {
       }
     });
     for (const auto& t : model_->deformable.trusses) {
-      const std::size_t a = t.end[0].block, bb = t.end[1].block;
-      const Vec3 xa = b.position[a] + rotate(b.rotation[a], t.end[0].body_point);
-      const Vec3 xb = b.position[bb] + rotate(b.rotation[bb], t.end[1].body_point);
-      const Vec3 e = (xb - xa).normalized();
-      bound.connect(a, bb, [&](auto&& spring) { spring(xa, xb, Mat3(t.axial_stiffness() * e * e.transpose())); });
+      const auto point = [&](const model::TrussEnd& e) {
+        return e.node >= 0 ? FrequencyBound::node_point(static_cast<std::size_t>(e.node))
+                           : FrequencyBound::block_point(e.block, b.position[e.block] + rotate(b.rotation[e.block], e.body_point));
+      };
+      const Vec3 e = (model_->end_position(t.end[1]) - model_->end_position(t.end[0])).normalized();
+      bound.spring({point(t.end[0])}, {point(t.end[1])}, Mat3(t.axial_stiffness() * e * e.transpose()));
     }
+    if (mixed_) deformable_.add_to(*model_, bound);
     return bound;
   }
 
@@ -233,8 +235,8 @@ class Simulation {
   /// Partial density scaling to a target timestep (s, the timestep to run with: the safety factor times the
   /// critical one): every free node and free rigid block whose own limit is below the target gets just the mass
   /// (rigid blocks: mass and inertia, by one factor) that brings it to the target; the others keep theirs. A block's
-  /// own limit: its row of FrequencyBound (a model of rigid blocks; its neighbours as they are, so that scaling
-  /// them too only lowers it), else 2 safety f / sqrt(k / m) as in critical_timestep(). Weights stay those of the
+  /// or node's own limit: its row of FrequencyBound (its neighbours as they are, so that scaling them too only
+  /// lowers it), under static masses 2 safety f / sqrt(k / m) as in critical_timestep(). Weights stay those of the
   /// real masses. Sets the timestep to the target and reports what was added. Call before stepping (the energy
   /// reference is taken at the first step). Throws InvalidArgument if the target is not positive and finite.
   DensityScaling scale_density_to(double target_dt) { return scale_density_to(target_dt, safety_factor()); }
@@ -649,14 +651,25 @@ class Simulation {
     const bool bounded = rule == MassRule::raise_only && bounded_frequency();
     std::vector<double> kt, kr, kn;
     if (!bounded) stiffnesses(kt, kr, kn);
-    for (std::size_t i = 0; i < kn.size(); ++i) {
+    const std::optional<FrequencyBound> bound = bounded ? std::optional<FrequencyBound>(frequency_bound()) : std::nullopt;
+    // mass (and inertia) times s: own / s + coupled / sqrt(s) <= omega_t^2, solved for x = 1 / sqrt(s)
+    const auto bounded_factor = [&](const FrequencyBound::Row& row) {
+      if (row.omega_squared() <= omega2) return 1.0;
+      const double x = row.own > 0 ? (std::sqrt(row.coupled * row.coupled + 4 * row.own * omega2) - row.coupled) / (2 * row.own)
+                                   : omega2 / row.coupled;
+      return 1.0 / (x * x) * margin;
+    };
+    for (std::size_t i = 0; i < nd.size(); ++i) {
       if ((nd.fixity[i] & 7) == 7) continue;
+      if (bounded) {
+        plan.node_mass[i] *= bounded_factor(bound->node_row(i));
+        continue;
+      }
       const double required = kn[i] / omega2;
       plan.node_mass[i] = rule == MassRule::raise_only ? std::max(nd.mass[i], required) : (kn[i] > 0 ? required : nd.real_mass[i]);
     }
     const auto& real_mass = real_block_masses();
     const auto& real_inertia = real_block_inertias();
-    const std::optional<FrequencyBound> bound = bounded ? std::optional<FrequencyBound>(frequency_bound()) : std::nullopt;
     for (std::size_t i = 0; i < b.size(); ++i) {
       if (b.motion[i] != model::Motion::free || model_->deformable.is_deformable(i)) continue;
       const bool translates = (b.fixity[i] & 7) != 7;
@@ -664,12 +677,7 @@ class Simulation {
       double& mass = plan.block_mass[i];
       Vec3& inertia = plan.block_inertia[i];
       if (bounded) {
-        // mass and inertia times s: own / s + coupled / sqrt(s) <= omega_t^2, solved for x = 1 / sqrt(s)
-        const auto row = bound->row(i);
-        if (row.omega_squared() <= omega2) continue;
-        const double x = row.own > 0 ? (std::sqrt(row.coupled * row.coupled + 4 * row.own * omega2) - row.coupled) / (2 * row.own)
-                                     : omega2 / row.coupled;
-        const double factor = 1.0 / (x * x) * margin;
+        const double factor = bounded_factor(bound->row(i));
         mass *= factor;
         inertia *= factor;
       } else if (rule == MassRule::raise_only) {

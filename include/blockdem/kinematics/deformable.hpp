@@ -340,6 +340,44 @@ class DeformableState {
     }
   }
 
+  /// Adds the elements and the node contacts to an upper bound on omega_max (the trusses are the caller's).
+  template <class Bound>
+  void add_to(const model::Model& m, Bound& bound) const {
+    const auto& te = m.deformable.tetrahedra;
+    const auto& materials = m.deformable.materials;
+    for (std::size_t t = 0; t < te.size(); ++t) {
+      const auto& mat = materials[te.material[t]];
+      bound.tetrahedron(te.node[t], te.gradient[t], te.volume[t], mat.bulk(), mat.shear());
+    }
+    const auto& x = m.deformable.nodes.position;
+    for_each_group([&](const auto& g) {
+      using G = std::remove_cvref_t<decltype(g)>;
+      using L = typename G::LawType;
+      for (std::size_t k = 0; k < g.size(); ++k) {
+        const auto& p = g.properties[g.property[k]];
+        const double kn = L::normal_stiffness(p), ks = L::shear_stiffness(p);
+        Vec3 n;
+        if constexpr (G::FaceKinematics::deformable) {
+          const auto& tri = g.triangle[k];
+          n = (x[tri[1]] - x[tri[0]]).cross(x[tri[2]] - x[tri[0]]).normalized();
+        } else {
+          n = rotate(m.bodies.rotation[g.face_block[k]], g.normal_local[k]);
+        }
+        const Mat3 nn = n * n.transpose();
+        const Mat3 d = g.area[k] * (kn * nn + ks * (Mat3::Identity() - nn));
+        const auto node = Bound::node_point(g.node[k]);
+        if constexpr (G::FaceKinematics::deformable) {
+          const auto& tri = g.triangle[k];
+          const auto& w = g.weight[k];
+          bound.spring({node}, {Bound::node_point(tri[0], w[0]), Bound::node_point(tri[1], w[1]), Bound::node_point(tri[2], w[2])}, d);
+        } else {
+          const std::size_t fb = g.face_block[k];
+          bound.spring({node}, {Bound::block_point(fb, m.bodies.position[fb] + rotate(m.bodies.rotation[fb], g.point_local[k]))}, d);
+        }
+      }
+    });
+  }
+
   DeformableEnergy energy(const model::Model& m, const Damping& damping) const {
     DeformableEnergy e;
     e.slip = retired_slip;
