@@ -231,6 +231,30 @@ TEST_CASE("simulation: energy that a re-detection adds (CPs that start in overla
   CHECK(e.balance_error < 2e-3);  // without the term: 20 %
 }
 
+TEST_CASE("simulation: a block in free fall is detected again as its clearance halves, and lands without overlap") {
+  // A 0.4 m cube dropped from 1 m above its base. Re-detected every half tolerance (0.5 mm) of its fall, it would be
+  // detected some 2,000 times before it lands; with the redetection distance half its clearance it is detected each
+  // time that clearance has halved (about log2(1 m / 1 mm) = 10 times), and still before it touches.
+  auto s = test::block_on_base(0.4, 0.4, 0.4);
+  auto& b = s.model.bodies;
+  b.position[s.block].z() += 1.0;
+  Simulation<damping::None, contact::Elastic> sim(s.model, damping::None{}, [](int, int) { return contact::Elastic::Parameters(1e9, 1e9); });
+  REQUIRE(sim.contact_points() == 0);
+  const double dt = 1e-5;
+  sim.set_timestep(dt);
+  double bottom = 1.0;
+  while (sim.contact_points() == 0 && sim.steps() < 100000) {
+    bottom = b.position[s.block].z() - 0.2;  // the gap when the step about to be taken detects
+    sim.step();
+  }
+  REQUIRE(sim.contact_points() > 0);
+  MESSAGE("landed after " << sim.steps() << " steps and " << sim.detections() << " detections, found at a gap of "
+                          << 1e3 * bottom << " mm, at " << -b.velocity[s.block].z() << " m/s");
+  CHECK(sim.detections() < 40);
+  CHECK(bottom > -b.velocity[s.block].norm() * dt);  // found before it overlaps by more than a step's fall
+  CHECK(bottom < model::ContactSettings{}.tolerance);
+}
+
 namespace {
 /// Energy balance error after a damped free vibration (vertical only) with the given policy.
 template <class Damping>

@@ -516,12 +516,16 @@ class Simulation {
   /// timestep and the damping policy's constants are in the state. load_state throws InvalidArgument (naming the
   /// file and the field) on a checkpoint of another layout or model size; the simulation is then unusable.
   void save_state(io::CheckpointWriter& out) const { visit_state(*this, out); }
-  void load_state(io::CheckpointReader& in) { visit_state(*this, in); }
+  void load_state(io::CheckpointReader& in) {
+    visit_state(*this, in);
+    update_redetection_distances();
+  }
 
  private:
   /// The one list of the saved fields, for both directions. Not saved: model_ (the caller's model, whose state is
   /// saved in its place); properties_ and settings_ (the description: the constructor's arguments);
   /// chosen_properties_ (a memo of properties_, filled again identically); radius_ (from the shapes);
+  /// redetection_distance_ (from the poses at the last detection);
   /// taken_over_ and old_contacts_ (scratch of a detection). The damping policy is saved whole: its parameters
   /// and the constants of prepare(dt).
   template <class Self, class Archive>
@@ -588,6 +592,7 @@ class Simulation {
     radius_.assign(n, 0.0);
     for (std::size_t i = 0; i < n; ++i)
       for (const auto& v : model_->bodies.shape[i].vertices) radius_[i] = std::max(radius_[i], v.norm());
+    update_redetection_distances();
     for (std::size_t i = 0; i < n; ++i) {
       const auto& b = model_->bodies;
       kinetic_[i] = b.motion[i] == model::Motion::free
@@ -825,8 +830,59 @@ class Simulation {
     detected_position_ = b.position;
     detected_orientation_ = b.orientation;
     detected_base_displacement_ = base_displacement_;
+    update_redetection_distances();
     moved_since_detection_ = false;
     ++detections_;
+  }
+
+  /// Per block, how far it may move (relative to the base, rotation counting with its radius) before the contacts
+  /// are detected again: the settings' redetection distance r (half the tolerance), or half the clearance c between
+  /// its bounding box and every other block's at the last detection if that is more. Two blocks that each moved less
+  /// than their distance have closed a gap of d by less than d (c/2 + c'/2 <= d with c, c' <= d; r + c'/2 <= d if
+  /// d >= 2 r), so no contact is missed; a block in contact (c <= 2 r) keeps r. A block in flight, far from the
+  /// others, is no longer detected again every half millimetre of its fall. Deformable blocks' boxes (of their rigid
+  /// entry) are widened by the tolerance for their deformation; their nodes keep r. From the poses at the last
+  /// detection, so that a loaded checkpoint gets the same distances.
+  void update_redetection_distances() {
+    const auto& b = model_->bodies;
+    const std::size_t n = b.size();
+    const double r = settings_.redetection();
+    redetection_distance_.assign(n, r);
+    std::vector<Vec3> lo(n), hi(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Mat3 rotation = rotation_matrix(detected_orientation_[i]);
+      lo[i] = Vec3::Constant(std::numeric_limits<double>::infinity());
+      hi[i] = -lo[i];
+      for (const auto& v : b.shape[i].vertices) {
+        const Vec3 x = detected_position_[i] + rotation * v;
+        lo[i] = lo[i].cwiseMin(x);
+        hi[i] = hi[i].cwiseMax(x);
+      }
+      if (model_->deformable.is_deformable(i)) {
+        lo[i].array() -= settings_.tolerance;
+        hi[i].array() += settings_.tolerance;
+      }
+    }
+    // The nearest box of each free block by a sweep along x (sorted by lo.x): forward the x gap only grows;
+    // backward it is at least lo_i.x - lo_j.x - the widest box.
+    std::vector<std::size_t> order(n);
+    for (std::size_t i = 0; i < n; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return lo[x].x() < lo[y].x(); });
+    double widest = 0;
+    for (std::size_t i = 0; i < n; ++i) widest = std::max(widest, hi[i].x() - lo[i].x());
+    const auto box_distance = [&](std::size_t i, std::size_t j) {
+      return (lo[j] - hi[i]).cwiseMax(lo[i] - hi[j]).cwiseMax(0.0).norm();
+    };
+    for (std::size_t u = 0; u < n; ++u) {
+      const std::size_t i = order[u];
+      if (b.motion[i] != model::Motion::free) continue;
+      double clearance = std::numeric_limits<double>::infinity();
+      for (std::size_t w = u + 1; w < n && lo[order[w]].x() - hi[i].x() < clearance; ++w)
+        clearance = std::min(clearance, box_distance(i, order[w]));
+      for (std::size_t w = u; w-- > 0 && lo[i].x() - lo[order[w]].x() - widest < clearance;)
+        clearance = std::min(clearance, box_distance(i, order[w]));
+      redetection_distance_[i] = std::max(r, 0.5 * clearance);
+    }
   }
 
   static std::uint64_t pair_key(std::size_t a, std::size_t b) { return (std::uint64_t{a} << 32) | std::uint64_t{b}; }
@@ -1523,14 +1579,14 @@ class Simulation {
   }
 
   /// Positions and orientations of blocks [begin, end), one block per vector lane and all of them as if free (the
-  /// caller puts back the others); whether a free block moved (relative to the base) by more than the redetection
-  /// distance since the last detection, rotation counting with the block's radius. Turns beyond the range of
-  /// turned()'s series, and blocks near the redetection distance, are finished one by one afterwards.
+  /// caller puts back the others); whether a free block moved (relative to the base) by more than its redetection
+  /// distance (update_redetection_distances) since the last detection, rotation counting with the block's radius.
+  /// Turns beyond the range of turned()'s series, and blocks near their redetection distance, are finished one by
+  /// one afterwards.
   bool update_positions(std::size_t begin, std::size_t end, const Vec3& base_moved) {
     auto& b = model_->bodies;
     const double dt = dt_;
     const double h = 0.5 * dt;
-    const double redetection = settings_.redetection();
     const double shift[3] = {base_moved[0], base_moved[1], base_moved[2]};
     // The turned quaternion before its normalisation, whose square root (with libm's errno check) would keep the
     // loop from being vectorised; the half angle squared, to find turns beyond the series; the reach (|d|^2 + a^2)
@@ -1603,6 +1659,7 @@ class Simulation {
         b.rotation[i] = rotation_matrix(b.orientation[i]);
       }
       // (|d| + a)^2 <= 2 (|d|^2 + a^2): most blocks are far below the redetection distance, without square roots.
+      const double redetection = redetection_distance_[i];
       if (large_turn || 2.0 * reach[k] > redetection * redetection) {
         const double angle = small_angle_between(b.orientation[i], detected_orientation_[i]);
         moved = moved || (b.position[i] - detected_position_[i] - base_moved).norm() + angle * radius_[i] > redetection;
@@ -1753,6 +1810,7 @@ class Simulation {
   bool moved_since_detection_ = false;
   bool static_masses_ = false;  // scale_masses_for_statics() until restore_real_masses()
   std::vector<double> kinetic_, gravity_work_, base_work_, viscous_, radius_;
+  std::vector<double> redetection_distance_;  // m, per block (update_redetection_distances)
   std::vector<double> inverse_mass_;     // 1/kg, of each block (set with the block arrays)
   std::vector<Vec3> inverse_inertia_;    // 1/(kg m^2), principal
   std::vector<Vec3> detected_position_;
