@@ -208,7 +208,7 @@ int run_study(RunCommand& command) {
       return std::string("-");
     };
     fmt::print("level {:g} %: {} steps in {:.1f} s ({:.0f} steps/s){}; OC1-y {} mm, ACC18-y {} m/s^2; damaged joints {} (cracked {}, "
-               "crushed {}, slipped {}); energy balance error {:.2e}\n",
+               "crushed {}, slipped {}){}; energy balance error {:.2e}\n",
                L.level, L.steps, L.wall_seconds, L.steps_per_second(), L.interrupted ? " INTERRUPTED" : "",
                [&] {
                  for (const auto& p : L.peaks)
@@ -216,6 +216,7 @@ int run_study(RunCommand& command) {
                  return std::string("-");
                }(),
                peak("ACC18_ay"), L.damage.total.damaged, L.damage.total.cracked, L.damage.total.crushed, L.damage.total.slipped,
+               L.damage.loose_blocks > 0 ? fmt::format("; {} blocks without contact (fallen out or in flight)", L.damage.loose_blocks) : "",
                L.energy.balance_error);
   }
   fmt::print("\n{}", analysis::table4(r));

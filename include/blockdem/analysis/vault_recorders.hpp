@@ -242,6 +242,7 @@ struct DamageCensus {
   };
   std::array<Counts, models::component_count> by_component{};
   Counts total;
+  long long loose_blocks = 0;  // free blocks without any contact point: fallen out of the vault, or in flight
 };
 
 /// The census of a simulation of the cross vault (joint tags are the components), over the contact points of rigid
@@ -249,7 +250,9 @@ struct DamageCensus {
 template <class Simulation>
 DamageCensus damage_census(const Simulation& sim, const model::Model& model) {
   DamageCensus census;
+  std::vector<char> touched(model.bodies.size(), 0);
   sim.visit_contact_histories([&](std::size_t a, std::size_t b, const auto& h) {
+    touched[a] = touched[b] = 1;
     bool cracked = false, crushed = false, slipped = false;
     double damage = 0;
     if constexpr (requires { h.tension_secant; }) {  // elasto-softening
@@ -275,6 +278,7 @@ DamageCensus damage_census(const Simulation& sim, const model::Model& model) {
     count(census.by_component[ta]);
     if (tb != ta) count(census.by_component[tb]);
   });
+  for (std::size_t i = 0; i < touched.size(); ++i) census.loose_blocks += model.bodies.motion[i] == model::Motion::free && !touched[i];
   return census;
 }
 

@@ -243,7 +243,7 @@ inline std::string report_json(const VaultStudyResult& r) {
       }
       residual.add_raw(r.monitor_points[p], vector);
     }
-    damage.add("total", census_json(L.damage.total));
+    damage.add("total", census_json(L.damage.total)).add("loose_blocks", L.damage.loose_blocks);
     for (const auto c : models::all_components) damage.add(models::name(c), census_json(L.damage.by_component[models::index(c)]));
     EnergyReport delta = L.energy;
     delta.gravity_work -= L.energy_at_start.gravity_work;
