@@ -71,3 +71,23 @@ TEST_CASE("detection: every joint of an arch is found, with zero gaps") {
   CHECK(c.size() == 21 * 4);  // 19 joints between voussoirs and 2 springings, 4 corners each
   for (const auto& k : c) CHECK(std::abs(k.gap) < 1e-12);
 }
+
+TEST_CASE("contact detection: a block's redetection distance is half its clearance, half the tolerance in contact") {
+  // Reference: the gap between axis-aligned boxes. A block on the base touches it (r = tolerance / 2); a block 0.3 m
+  // above the first may move 0.15 m, as may the first toward it only r: together less than the gap.
+  model::Model m;
+  m.add_block(geometry::make_box(Vec3(-1, -1, -0.5), Vec3(1, 1, 0)), 2000, "base", 0, model::Motion::fixed);
+  m.add_block(geometry::make_box(Vec3(0, 0, 0), Vec3(0.2, 0.2, 0.2)), 2000, "on base");
+  m.add_block(geometry::make_box(Vec3(0, 0, 0.5), Vec3(0.2, 0.2, 0.7)), 2000, "above");
+  m.add_block(geometry::make_box(Vec3(3, 0, 0), Vec3(3.2, 0.2, 0.2)), 2000, "aside");  // 2 m from the base's box
+  model::ContactSettings settings;
+  const auto& b = m.bodies;
+  const auto d = model::redetection_distances(b, b.position, b.orientation, settings, [](std::size_t) { return false; });
+  CHECK(d[0] == settings.redetection());
+  CHECK(d[1] == settings.redetection());
+  CHECK(d[2] == doctest::Approx(0.15).epsilon(1e-12));
+  CHECK(d[3] == doctest::Approx(1.0).epsilon(1e-12));
+  // Widened by the tolerance (a deformable block's box): 1 mm less clearance.
+  const auto w = model::redetection_distances(b, b.position, b.orientation, settings, [](std::size_t i) { return i == 2; });
+  CHECK(w[2] == doctest::Approx(0.5 * (0.3 - settings.tolerance)).epsilon(1e-12));
+}

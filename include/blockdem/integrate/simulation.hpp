@@ -835,54 +835,12 @@ class Simulation {
     ++detections_;
   }
 
-  /// Per block, how far it may move (relative to the base, rotation counting with its radius) before the contacts
-  /// are detected again: the settings' redetection distance r (half the tolerance), or half the clearance c between
-  /// its bounding box and every other block's at the last detection if that is more. Two blocks that each moved less
-  /// than their distance have closed a gap of d by less than d (c/2 + c'/2 <= d with c, c' <= d; r + c'/2 <= d if
-  /// d >= 2 r), so no contact is missed; a block in contact (c <= 2 r) keeps r. A block in flight, far from the
-  /// others, is no longer detected again every half millimetre of its fall. Deformable blocks' boxes (of their rigid
-  /// entry) are widened by the tolerance for their deformation; their nodes keep r. From the poses at the last
-  /// detection, so that a loaded checkpoint gets the same distances.
+  /// Per block, how far it may move before the contacts are detected again (model::redetection_distances), from
+  /// the poses at the last detection, so that a loaded checkpoint gets the same distances.
   void update_redetection_distances() {
-    const auto& b = model_->bodies;
-    const std::size_t n = b.size();
-    const double r = settings_.redetection();
-    redetection_distance_.assign(n, r);
-    std::vector<Vec3> lo(n), hi(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Mat3 rotation = rotation_matrix(detected_orientation_[i]);
-      lo[i] = Vec3::Constant(std::numeric_limits<double>::infinity());
-      hi[i] = -lo[i];
-      for (const auto& v : b.shape[i].vertices) {
-        const Vec3 x = detected_position_[i] + rotation * v;
-        lo[i] = lo[i].cwiseMin(x);
-        hi[i] = hi[i].cwiseMax(x);
-      }
-      if (model_->deformable.is_deformable(i)) {
-        lo[i].array() -= settings_.tolerance;
-        hi[i].array() += settings_.tolerance;
-      }
-    }
-    // The nearest box of each free block by a sweep along x (sorted by lo.x): forward the x gap only grows;
-    // backward it is at least lo_i.x - lo_j.x - the widest box.
-    std::vector<std::size_t> order(n);
-    for (std::size_t i = 0; i < n; ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return lo[x].x() < lo[y].x(); });
-    double widest = 0;
-    for (std::size_t i = 0; i < n; ++i) widest = std::max(widest, hi[i].x() - lo[i].x());
-    const auto box_distance = [&](std::size_t i, std::size_t j) {
-      return (lo[j] - hi[i]).cwiseMax(lo[i] - hi[j]).cwiseMax(0.0).norm();
-    };
-    for (std::size_t u = 0; u < n; ++u) {
-      const std::size_t i = order[u];
-      if (b.motion[i] != model::Motion::free) continue;
-      double clearance = std::numeric_limits<double>::infinity();
-      for (std::size_t w = u + 1; w < n && lo[order[w]].x() - hi[i].x() < clearance; ++w)
-        clearance = std::min(clearance, box_distance(i, order[w]));
-      for (std::size_t w = u; w-- > 0 && lo[i].x() - lo[order[w]].x() - widest < clearance;)
-        clearance = std::min(clearance, box_distance(i, order[w]));
-      redetection_distance_[i] = std::max(r, 0.5 * clearance);
-    }
+    const auto& d = model_->deformable;
+    redetection_distance_ = model::redetection_distances(model_->bodies, detected_position_, detected_orientation_, settings_,
+                                                         [&](std::size_t i) { return d.is_deformable(i); });
   }
 
   static std::uint64_t pair_key(std::size_t a, std::size_t b) { return (std::uint64_t{a} << 32) | std::uint64_t{b}; }

@@ -10,12 +10,14 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "blockdem/core/error.hpp"
+#include "blockdem/core/rotation.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/geometry/convex_polyhedron.hpp"
 #include "blockdem/model/model.hpp"
@@ -302,6 +304,57 @@ inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, 
     }
   }
   return out;
+}
+
+/// Per block, how far it may move (relative to the base, rotation counting with its radius) before the contacts
+/// are detected again: the settings' redetection distance r (half the tolerance), or half the clearance c between
+/// its bounding box and every other block's if that is more, the blocks at the given poses (those of the last
+/// detection). Two blocks that each moved less than their distance have closed a gap d between them by less than d
+/// (c/2 + c'/2 <= d with c, c' <= d; r + c'/2 <= d if d >= 2 r), so no contact is missed; a block in contact
+/// (c <= 2 r) keeps r. A block in flight, far from the others, is no longer detected again every half millimetre of
+/// its fall. widened(i): a block whose box is widened by the tolerance (a deformable block, whose nodes may have
+/// moved off its rigid entry's shape). Non-free blocks get r (they are not checked).
+template <class Widened>
+std::vector<double> redetection_distances(const RigidBodies& bodies, const std::vector<Vec3>& position,
+                                          const std::vector<Quaternion>& orientation, const ContactSettings& settings,
+                                          Widened&& widened) {
+  const std::size_t n = bodies.size();
+  const double r = settings.redetection();
+  std::vector<double> distance(n, r);
+  std::vector<Vec3> lo(n), hi(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Mat3 rotation = rotation_matrix(orientation[i]);
+    lo[i] = Vec3::Constant(std::numeric_limits<double>::infinity());
+    hi[i] = -lo[i];
+    for (const auto& v : bodies.shape[i].vertices) {
+      const Vec3 x = position[i] + rotation * v;
+      lo[i] = lo[i].cwiseMin(x);
+      hi[i] = hi[i].cwiseMax(x);
+    }
+    if (widened(i)) {
+      lo[i].array() -= settings.tolerance;
+      hi[i].array() += settings.tolerance;
+    }
+  }
+  // The nearest box to each free block by a sweep along x (sorted by lo.x): forward the x gap only grows; backward
+  // it is at least lo_i.x - lo_j.x - the widest box.
+  std::vector<std::size_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return lo[x].x() < lo[y].x(); });
+  double widest = 0;
+  for (std::size_t i = 0; i < n; ++i) widest = std::max(widest, hi[i].x() - lo[i].x());
+  const auto box_distance = [&](std::size_t i, std::size_t j) { return (lo[j] - hi[i]).cwiseMax(lo[i] - hi[j]).cwiseMax(0.0).norm(); };
+  for (std::size_t u = 0; u < n; ++u) {
+    const std::size_t i = order[u];
+    if (bodies.motion[i] != Motion::free) continue;
+    double clearance = std::numeric_limits<double>::infinity();
+    for (std::size_t w = u + 1; w < n && lo[order[w]].x() - hi[i].x() < clearance; ++w)
+      clearance = std::min(clearance, box_distance(i, order[w]));
+    for (std::size_t w = u; w-- > 0 && lo[i].x() - lo[order[w]].x() - widest < clearance;)
+      clearance = std::min(clearance, box_distance(i, order[w]));
+    distance[i] = std::max(r, 0.5 * clearance);
+  }
+  return distance;
 }
 
 }  // namespace blockdem::model
