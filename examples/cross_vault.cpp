@@ -218,6 +218,9 @@ int run_study(RunCommand& command) {
                peak("ACC18_ay"), L.damage.total.damaged, L.damage.total.cracked, L.damage.total.crushed, L.damage.total.slipped,
                L.damage.loose_blocks > 0 ? fmt::format("; {} blocks without contact (fallen out or in flight)", L.damage.loose_blocks) : "",
                L.energy.balance_error);
+    if (L.hold.raises > 0)
+      fmt::print("  new contacts held the timestep: {} times, {} nodes and {} blocks made heavier, +{:.3g} kg in all so far\n",
+                 L.hold.raises, L.hold.raised_nodes, L.hold.raised_blocks, L.hold.added_mass);
   }
   fmt::print("\n{}", analysis::table4(r));
   fmt::print("outputs in {}/ (report.json, history_<level>.csv, damage_<level>.vtu, contacts_<level>.vtu/.csv); plots: "

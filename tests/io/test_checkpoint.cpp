@@ -505,10 +505,12 @@ TEST_CASE("checkpoint: refusals name the file and the problem") {
   }
   SUBCASE("another format version") {
     fresh_copy();
-    // A later build's, and an earlier build's (version 1 held no contact_update: read on, it would be out of step).
-    for (const std::uint32_t version : {99u, 1u}) {
+    // A later build's, and earlier builds' (version 1 held no contact_update, 2 no timestep hold: read on, they
+    // would be out of step).
+    for (const std::uint32_t version : {99u, 1u, 2u}) {
       overwrite(spoiled, io::checkpoint_magic.size(), &version, sizeof version);
-      const std::string message = "written by format version " + std::to_string(version) + ", this build reads 2";
+      const std::string message = "written by format version " + std::to_string(version) + ", this build reads " +
+                                  std::to_string(io::checkpoint_format_version);
       CHECK_THROWS_WITH_AS(load_small(spoiled), doctest::Contains(message.c_str()), InvalidArgument);
     }
   }

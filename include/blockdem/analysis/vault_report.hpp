@@ -36,6 +36,7 @@ struct LevelResult {
   DamageCensus damage;              // at the end of the level (accumulated over the levels so far)
   EnergyReport energy;              // since the start of the dynamic run, at the end of the level
   EnergyReport energy_at_start;     // the same at the start of the level
+  TimestepHold hold;                // since the start of the dynamic run, at the end of the level (cumulative)
 
   double steps_per_second() const { return wall_seconds > 0 ? steps / wall_seconds : 0; }
 
@@ -57,6 +58,7 @@ struct LevelResult {
     ar("damage census", s.damage);
     ar("energy", s.energy);
     ar("energy at the start", s.energy_at_start);
+    ar("timestep hold", s.hold);
   }
 };
 
@@ -258,6 +260,11 @@ inline std::string report_json(const VaultStudyResult& r) {
         .add("interrupted", L.interrupted).add("final_table_velocity_m_s", L.final_table_velocity)
         .add("peaks", peaks).add("residual_displacement_m", residual).add("damage", damage)
         .add("energy", energy_json(L.energy)).add("energy_change_over_level", energy_json(delta));
+    JsonObject hold;  // cumulative since the start of the dynamic run
+    hold.add("checks", L.hold.checks).add("raises", L.hold.raises).add("raised_nodes", L.hold.raised_nodes)
+        .add("raised_blocks", L.hold.raised_blocks).add("added_mass_kg", L.hold.added_mass)
+        .add("kinetic_energy_added_J", L.hold.kinetic_energy).add("timestep_reductions", L.hold.reductions);
+    l.add("timestep_hold", hold);
     levels.push_back(l);
     minutes.push_back(L.wall_seconds / 60);
     total += L.wall_seconds;

@@ -484,6 +484,7 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
       L.damage = damage_census(sim, model);
       L.energy = sim.energy();
       L.energy_at_start = cursor.energy_at_level_start;
+      L.hold = sim.timestep_hold();
       if (summary.interrupted) {
         save();  // the level stays open in the checkpoint, which holds the finished levels only
         r.levels.push_back(L);  // the report shows this one as far as it went

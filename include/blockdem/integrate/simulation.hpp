@@ -74,6 +74,22 @@ struct DensityScaling {
   double min_density_scaling_factor = 1;
 };
 
+/// What holding the timestep against contacts that appear during a dynamic run did (Simulation::hold_timestep()):
+/// re-detection may add contact points whose stiffness lowers the critical timestep below the one the run was set
+/// up with. A density-scaled run keeps its timestep and raises the masses of the rows that now exceed the target,
+/// by the rule of the first scaling (partial density scaling kept up to date); a run without density scaling keeps
+/// its margin below the critical timestep by lowering the timestep. Counts are cumulative over the simulation.
+struct TimestepHold {
+  long long checks = 0;           // re-detections after which the bound was checked
+  long long raises = 0;           // of them, those after which some mass was raised
+  long long raised_nodes = 0;     // nodes raised, counted once per raise
+  long long raised_blocks = 0;    // rigid blocks raised (mass and inertia by one factor), counted once per raise
+  double added_mass = 0;          // kg, mass added by the raises
+  double kinetic_energy = 0;      // J, kinetic energy the raises added at the velocities of the moment
+  long long reductions = 0;       // timestep lowered (runs without density scaling)
+  double smallest_dt = 0;         // s, the smallest timestep after a reduction (0: none)
+};
+
 template <damping::DampingPolicy Damping, contact::ContactLaw... Laws>
 class Simulation {
   static_assert(sizeof...(Laws) >= 1, "Simulation needs at least one joint law");
@@ -120,6 +136,7 @@ class Simulation {
     // The other's timestep if one was chosen below its default (and below this policy's), else this policy's default.
     const bool chosen = other.dt_ < other.default_timestep() * (1 - 1e-12);
     set_timestep(chosen ? std::min(other.dt_, default_timestep()) : default_timestep());
+    density_safety_ = other.density_safety_;
   }
 
   /// The margin of the timestep below the critical one, by how omega_max is found (eq. 1). Dynamic masses: the
@@ -287,6 +304,7 @@ class Simulation {
     }
     set_inverse_masses();
     static_masses_ = false;
+    density_safety_ = 0;
     set_timestep(default_timestep());
   }
 
@@ -314,8 +332,12 @@ class Simulation {
       throw InvalidArgument("timestep " + std::to_string(dt) + " s exceeds the critical timestep " +
                             std::to_string(critical) + " s (eq. 1 with the damping factor of eq. 11/20)");
     dt_ = dt;
+    timestep_margin_ = check == TimestepCheck::checked && std::isfinite(critical) ? dt / critical : 0.0;
     if constexpr (requires(Damping& d) { d.prepare(dt); }) damping_.prepare(dt_);
   }
+
+  /// What holding the timestep against new contacts has done so far (see TimestepHold).
+  const TimestepHold& timestep_hold() const { return hold_; }
 
   double timestep() const { return dt_; }
   double time() const { return time_; }
@@ -560,6 +582,9 @@ class Simulation {
     ar("retired slip", s.retired_slip_);
     ar("retired viscous work", s.retired_viscous_);
     ar("energy added by contact updates", s.contact_update_);
+    ar("density scaling safety factor", s.density_safety_);
+    ar("timestep margin", s.timestep_margin_);
+    ar("timestep hold", s.hold_);
   }
 
   template <damping::DampingPolicy, contact::ContactLaw...>
@@ -753,6 +778,7 @@ class Simulation {
     }
     r.mass_increase_percent = r.real_mass > 0 ? 100.0 * r.added_mass / r.real_mass : 0.0;
     static_masses_ = rule == MassRule::exact;
+    density_safety_ = rule == MassRule::raise_only ? safety_factor : 0.0;
     r.dt_critical = critical_timestep();
     set_timestep(target_dt);
     r.dt = dt_;
@@ -1710,6 +1736,63 @@ class Simulation {
     for_each_group([&](auto& g) { contact_pass(g, 0.0); });
     if constexpr (Mixed) mixed_forces(0.0);
     contact_update_ += stored() - before;
+    hold_timestep();
+  }
+
+  /// After a re-detection of a dynamic run: the new contact points may have raised omega_max (eq. 1) above what
+  /// the timestep allows. A density-scaled run (scale_density_to) keeps its timestep and raises, by the same rule
+  /// and safety factor, the masses of the free nodes and rigid blocks whose row of FrequencyBound now exceeds the
+  /// target, at their present velocities (the kinetic energy this adds is a change of the model, kept in the
+  /// balance's contact_update term); any other run with a checked timestep keeps its margin dt / dt_critical by
+  /// lowering the timestep. Without this, one stiff new contact point at a light node diverges in a few steps.
+  void hold_timestep() {
+    if (!bounded_frequency()) return;  // static masses (settling): the estimate's wide margin, and local damping
+    if (density_safety_ > 0) {
+      ++hold_.checks;
+      const MassPlan plan = plan_masses(dt_, density_safety_, MassRule::raise_only,
+                                        [&](double omega) { return damping_.timestep_factor(omega); });
+      auto& b = model_->bodies;
+      auto& nd = model_->deformable.nodes;
+      double added = 0, kinetic = 0;
+      long long nodes = 0, blocks = 0;
+      for (std::size_t i = 0; i < nd.size(); ++i) {
+        if (!(plan.node_mass[i] > nd.mass[i])) continue;
+        const double dm = plan.node_mass[i] - nd.mass[i];
+        added += dm;
+        kinetic += 0.5 * dm * nd.velocity[i].squaredNorm();
+        nd.mass[i] = plan.node_mass[i];
+        deformable_.node_inverse_mass[i] = 1.0 / nd.mass[i];
+        ++nodes;
+      }
+      for (std::size_t i = 0; i < b.size(); ++i) {
+        if (!(plan.block_mass[i] > b.mass[i])) continue;
+        const double f = plan.block_mass[i] / b.mass[i];
+        const Vec3 w = b.rotation[i].transpose() * b.angular_velocity[i];
+        added += plan.block_mass[i] - b.mass[i];
+        kinetic += (f - 1) * 0.5 * (b.mass[i] * b.velocity[i].squaredNorm() + w.cwiseProduct(w).dot(b.principal_inertia[i]));
+        b.mass[i] = plan.block_mass[i];
+        b.principal_inertia[i] = plan.block_inertia[i];
+        inverse_mass_[i] = 1.0 / b.mass[i];
+        inverse_inertia_[i] = b.principal_inertia[i].cwiseInverse();
+        ++blocks;
+      }
+      if (nodes + blocks == 0) return;
+      ++hold_.raises;
+      hold_.raised_nodes += nodes;
+      hold_.raised_blocks += blocks;
+      hold_.added_mass += added;
+      hold_.kinetic_energy += kinetic;
+      contact_update_ += kinetic;
+    } else if (timestep_margin_ > 0) {
+      ++hold_.checks;
+      const double critical = critical_timestep();
+      if (!(dt_ > timestep_margin_ * critical)) return;
+      const double margin = timestep_margin_;
+      set_timestep(margin * critical);
+      timestep_margin_ = margin;
+      ++hold_.reductions;
+      hold_.smallest_dt = dt_;
+    }
   }
 
   /// Node contacts, elements, trusses, then what they apply to rigid blocks.
@@ -1767,6 +1850,9 @@ class Simulation {
   bool pending_increment_ = false;
   bool moved_since_detection_ = false;
   bool static_masses_ = false;  // scale_masses_for_statics() until restore_real_masses()
+  double density_safety_ = 0;   // the safety factor of scale_density_to() while its masses hold; 0: not density-scaled
+  double timestep_margin_ = 0;  // dt / dt_critical when the timestep was set (checked); 0: unchecked
+  TimestepHold hold_;
   std::vector<double> kinetic_, gravity_work_, base_work_, viscous_, radius_;
   std::vector<double> redetection_distance_;  // m, per block (update_redetection_distances)
   std::vector<double> inverse_mass_;     // 1/kg, of each block (set with the block arrays)
