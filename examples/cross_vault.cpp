@@ -216,7 +216,8 @@ int run_study(RunCommand& command) {
                  return std::string("-");
                }(),
                peak("ACC18_ay"), L.damage.total.damaged, L.damage.total.cracked, L.damage.total.crushed, L.damage.total.slipped,
-               L.damage.loose_blocks > 0 ? fmt::format("; {} blocks without contact (fallen out or in flight)", L.damage.loose_blocks) : "",
+               (L.damage.total.new_contacts > 0 ? fmt::format("; {} new contact points", L.damage.total.new_contacts) : std::string()) +
+                   (L.damage.loose_blocks > 0 ? fmt::format("; {} blocks without contact (fallen out or in flight)", L.damage.loose_blocks) : std::string()),
                L.energy.balance_error);
     if (L.hold.raises > 0)
       fmt::print("  new contacts held the timestep: {} times, {} nodes and {} blocks made heavier, +{:.3g} kg in all so far\n",

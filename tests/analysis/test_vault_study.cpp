@@ -138,8 +138,8 @@ TEST_CASE("vault study: the table follows the scaled input, and the acceleration
 }
 
 TEST_CASE("vault study: the energy balance of a level closes within 1 % for noDamp, MassProp and Maxwell") {
-  // noDamp at 75 % over 2 s of the strong part is the hardest case: about 1,300 damaged contact points, blocks
-  // sliding and re-contacting, nothing viscous to hide an error. The energy that re-detection stores in new CPs
+  // noDamp at 75 % over 2 s of the strong part is the hardest case: about 690 damaged contact points and 280 where
+  // blocks that had no contact touch (sliding and re-contacting), nothing viscous to hide an error. The energy that re-detection stores in new CPs
   // (EnergyReport::contact_update) is a term of its own: a few J, about 1 % of the work in.
   const OneThread one_thread;
   for (const auto scheme : {analysis::DampingScheme::none, analysis::DampingScheme::mass, analysis::DampingScheme::maxwell}) {
@@ -154,9 +154,11 @@ TEST_CASE("vault study: the energy balance of a level closes within 1 % for noDa
     const auto& e = r.levels[0].energy;
     MESSAGE(std::string(analysis::name(scheme)) << ": balance error " << e.balance_error << ", base work " << e.base_work << " J, viscous "
                                    << e.viscous << " J, hysteretic " << e.slip << " J, kinetic " << e.kinetic << " J, contact updates "
-                                   << e.contact_update << " J; damaged contact points " << r.levels[0].damage.total.damaged);
+                                   << e.contact_update << " J; damaged contact points " << r.levels[0].damage.total.damaged
+                                   << ", new ones " << r.levels[0].damage.total.new_contacts);
     CHECK(e.balance_error < 0.01);
-    if (damaging) CHECK(r.levels[0].damage.total.damaged > 500);
+    if (damaging) CHECK(r.levels[0].damage.total.damaged > 200);
+    if (damaging) CHECK(r.levels[0].damage.total.new_contacts > 200);
     CHECK(std::abs(e.base_work) > 0);
     if (scheme == analysis::DampingScheme::none) CHECK(e.viscous == doctest::Approx(0.0));
     else CHECK(e.viscous > 0);

@@ -499,8 +499,15 @@ TEST_CASE("softening: a joint that broke and separated does not heal when it clo
   }
   REQUIRE(sim.contact_points() == 4);
   double smallest_damage = 1;
-  sim.visit_contacts([&](const auto& c) { smallest_damage = std::min(smallest_damage, c.damage); });
+  int never_bonded = 0, shown_as_damage = 0;
+  sim.visit_contact_histories([&](std::size_t, std::size_t, const auto& h) {
+    smallest_damage = std::min(smallest_damage, h.damage);
+    never_bonded += h.failed == contact::never_bonded;
+  });
+  sim.visit_contacts([&](const auto& c) { shown_as_damage += !c.never_bonded || c.damage != 0; });
   CHECK(smallest_damage == 1.0);
+  CHECK(never_bonded == 4);     // marked as new contacts through the law's updates since
+  CHECK(shown_as_damage == 0);  // and not shown as broken joints
 }
 
 TEST_CASE("softening: the inline elastic step equals the full step wherever it is taken") {

@@ -238,6 +238,7 @@ struct DamageCensus {
     long long crushed = 0;   // closed beyond the compressive hardening limit
     long long slipped = 0;   // damaged or failed in shear only (Mohr-Coulomb: failed or at the Coulomb limit)
     long long damaged = 0;   // any damage > 0 or failure
+    long long new_contacts = 0;  // appeared during the run, never bonded (contact::never_bonded): not counted as damage
     double max_damage = 0;
   };
   std::array<Counts, models::component_count> by_component{};
@@ -253,9 +254,12 @@ DamageCensus damage_census(const Simulation& sim, const model::Model& model) {
   std::vector<char> touched(model.bodies.size(), 0);
   sim.visit_contact_histories([&](std::size_t a, std::size_t b, const auto& h) {
     touched[a] = touched[b] = 1;
-    bool cracked = false, crushed = false, slipped = false;
+    bool cracked = false, crushed = false, slipped = false, appeared = false;
     double damage = 0;
-    if constexpr (requires { h.tension_secant; }) {  // elasto-softening
+    if constexpr (requires { h.failed; }) appeared = h.failed == contact::never_bonded;
+    if (appeared) {
+      // a contact made during the run: its failed start is no crack, crush or slip of the masonry
+    } else if constexpr (requires { h.tension_secant; }) {  // elasto-softening
       cracked = h.tension_secant < 1;
       crushed = h.compression_secant < 1;
       damage = h.damage;
@@ -271,6 +275,7 @@ DamageCensus damage_census(const Simulation& sim, const model::Model& model) {
       c.crushed += crushed;
       c.slipped += slipped;
       c.damaged += damaged;
+      c.new_contacts += appeared;
       c.max_damage = std::max(c.max_damage, damage);
     };
     const auto ta = static_cast<std::size_t>(model.bodies.joint_tag[a]), tb = static_cast<std::size_t>(model.bodies.joint_tag[b]);

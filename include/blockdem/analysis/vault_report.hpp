@@ -188,7 +188,7 @@ inline io::JsonObject energy_json(const EnergyReport& e) {
 inline io::JsonObject census_json(const DamageCensus::Counts& c) {
   io::JsonObject j;
   j.add("contact_points", c.contact_points).add("cracked", c.cracked).add("crushed", c.crushed).add("slipped", c.slipped)
-      .add("damaged", c.damaged).add("max_damage", c.max_damage);
+      .add("damaged", c.damaged).add("max_damage", c.max_damage).add("new_contacts", c.new_contacts);
   return j;
 }
 
@@ -340,12 +340,12 @@ void write_level_outputs(const std::string& dir, const std::string& label, const
   io::write_atomically(dir + "/contacts_" + label + ".vtu", [&](const std::string& p) { io::write_contacts_vtu(p, sim); });
   io::write_atomically(dir + "/contacts_" + label + ".csv", [&](const std::string& p) {
     std::ofstream out(p);
-    out << "x,y,z,nx,ny,nz,area,gap,normal_stress,shear_stress,damage,component_a,component_b\n";
+    out << "x,y,z,nx,ny,nz,area,gap,normal_stress,shear_stress,damage,never_bonded,component_a,component_b\n";
     char line[320];
     sim.visit_contacts([&](const auto& c) {
-      std::snprintf(line, sizeof line, "%.6g,%.6g,%.6g,%.5g,%.5g,%.5g,%.5g,%.5g,%.6g,%.6g,%.5g,%s,%s\n", c.position.x(),
+      std::snprintf(line, sizeof line, "%.6g,%.6g,%.6g,%.5g,%.5g,%.5g,%.5g,%.5g,%.6g,%.6g,%.5g,%d,%s,%s\n", c.position.x(),
                     c.position.y(), c.position.z(), c.normal.x(), c.normal.y(), c.normal.z(), c.area, c.gap, c.normal_stress,
-                    c.shear_stress, c.damage, std::string(models::name(vault.blocks[c.block_a].component)).c_str(),
+                    c.shear_stress, c.damage, c.never_bonded ? 1 : 0, std::string(models::name(vault.blocks[c.block_a].component)).c_str(),
                     std::string(models::name(vault.blocks[c.block_b].component)).c_str());
       out << line;
     });

@@ -25,6 +25,12 @@ struct Response {
   bool damping_active;
 };
 
+/// The value of a law's `History::failed` for a contact point that appeared during the run (an impact after
+/// separation, a new overlap after sliding): it never was part of a bonded joint, so it starts failed (no tension,
+/// residual cohesion), and laws keep the value, so that output and damage counts can tell such a contact from a
+/// joint that broke (contact points found at the first detection are bonded, failed = 0; a broken one has 1).
+inline constexpr unsigned char never_bonded = 2;
+
 /// A joint law: `Parameters` (validated on construction: throws InvalidArgument naming the field and range),
 /// `History` (per contact point; `gap` in m, positive open), and static functions
 /// - `update(params, history, du_normal, du_shear) -> Response`: du_normal is the increment of the gap (m),

@@ -91,7 +91,7 @@ struct MohrCoulomb {
     h.shear = tau;
     // Both flags stored together, at the end: damping_active, right after the step, reads them as one word, which
     // a lone byte store just before would stall (store forwarding).
-    h.failed = failed ? 1 : 0;
+    h.failed = failed ? (h.failed == never_bonded ? never_bonded : 1) : 0;
     h.slipping = slipping ? 1 : 0;
     return {sigma, tau, dissipated, !failed && !slipping && (h.gap <= 0 || p.tensile_strength > 0)};  // damping_active
   }

@@ -359,7 +359,7 @@ struct ElastoSoftening {
     }
 
     if (intact < intact0) h.damage = std::max(h.damage, std::min(1.0, 1.0 - intact));
-    h.failed = h.damage >= failure_damage;
+    if (h.failed != never_bonded) h.failed = h.damage >= failure_damage;
     h.inelastic = inelastic;
     return {sigma, tau, dissipated, damping_active(p, h)};
   }

@@ -369,7 +369,8 @@ class Simulation {
     double gap = 0;       // m, positive open
     double normal_stress = 0;  // Pa, compression positive (joint law plus damping)
     double shear_stress = 0;   // Pa, magnitude
-    double damage = 0;    // 0 intact .. 1 failed (laws without damage: 1 once failed)
+    double damage = 0;    // 0 intact .. 1 failed (laws without damage: 1 once failed); 0 if never bonded
+    bool never_bonded = false;  // appeared during the run (contact::never_bonded): a new contact, not a broken joint
     std::size_t block_a = 0, block_b = 0;
   };
 
@@ -386,6 +387,16 @@ class Simulation {
     deformable_.for_each_group([&](const auto& g) {
       for (std::size_t k = 0; k < g.size(); ++k) f(std::size_t{g.node_block[k]}, std::size_t{g.face_block[k]}, g.history[k]);
     });
+  }
+
+  /// The damage of a CP for output: the law's, or 1 once failed; 0 for a CP that appeared during the run and
+  /// was never bonded (contact::never_bonded), which ContactView::never_bonded marks instead.
+  template <class H>
+  static void set_damage(ContactView& v, const H& h) {
+    if constexpr (requires { h.failed; }) v.never_bonded = h.failed == contact::never_bonded;
+    if (v.never_bonded) return;
+    if constexpr (requires { h.damage; }) v.damage = h.damage;
+    else if constexpr (requires { h.failed; }) v.damage = h.failed ? 1.0 : 0.0;
   }
 
   /// Calls f(const ContactView&) for every contact point, group by group.
@@ -407,8 +418,7 @@ class Simulation {
           v.gap = h.gap;
           v.normal_stress = t[0];
           v.shear_stress = std::hypot(t[1], t[2]);
-          if constexpr (requires { h.damage; }) v.damage = h.damage;
-          else if constexpr (requires { h.failed; }) v.damage = h.failed ? 1.0 : 0.0;
+          set_damage(v, h);
           f(v);
         }
       }
@@ -433,8 +443,7 @@ class Simulation {
         v.gap = h.gap;
         v.normal_stress = g.traction[k][0];
         v.shear_stress = std::hypot(g.traction[k][1], g.traction[k][2]);
-        if constexpr (requires { h.damage; }) v.damage = h.damage;
-        else if constexpr (requires { h.failed; }) v.damage = h.failed ? 1.0 : 0.0;
+        set_damage(v, h);
         f(v);
       }
     });
@@ -983,12 +992,16 @@ class Simulation {
         // detected; the new one at a vertex of the current overlap, so near it within the contact plane (along the
         // normal they differ by the overlap).
         const std::uint32_t none = o->first_point[oc + 1];
-        std::uint32_t k = none;
-        double nearest = match;
+        std::uint32_t k = none, closest = none;
+        double nearest = match, closest_distance = std::numeric_limits<double>::infinity();
         for (std::uint32_t j = o->first_point[oc]; j < none; ++j) {
-          if (taken[j]) continue;
           Vec3 e = old_frame.point(o->s1[j], o->s2[j]) - c->position;
           e -= e.dot(n) * n;
+          if (e.norm() < closest_distance) {
+            closest_distance = e.norm();
+            closest = j;
+          }
+          if (taken[j]) continue;
           if (e.norm() <= nearest) {
             nearest = e.norm();
             k = j;
@@ -1010,13 +1023,21 @@ class Simulation {
           carried_viscous += viscous;
           // Shear components follow the new tangent directions.
           if constexpr (requires { h.shear; }) turn_shear(h.shear[0], h.shear[1], old_frame, t1, t2);
+        } else if (closest != none) {
+          // A CP that the contact's new polygon adds (a corner that appeared as the faces turned, a CP split off):
+          // the joint is the same, so it takes the state of the joint where it is, that of the old contact's
+          // closest CP (bond, damage, stresses; its own gap; no damping state), not a new contact's.
+          matched = true;
+          h = o->history[closest];
+          h.gap = c->gap;
+          if constexpr (requires { h.shear; }) turn_shear(h.shear[0], h.shear[1], old_frame, t1, t2);
         }
       }
-      // A CP that appears during the run (an impact after separation, a new overlap after sliding) was never part
-      // of a bonded joint: it starts from the law's failed state (no tension, residual cohesion), so that a joint
-      // that broke and separated does not heal when it closes again.
+      // A CP that appears during the run where there was no contact (an impact after separation, a new pair after
+      // sliding) was never part of a bonded joint: it starts from the law's failed state (no tension, residual
+      // cohesion), so that a joint that broke and separated does not heal when it closes again.
       if (keep_history && !matched) {
-        if constexpr (requires { h.failed; }) h.failed = 1;
+        if constexpr (requires { h.failed; }) h.failed = contact::never_bonded;
         if constexpr (requires { h.damage; }) h.damage = 1.0;
       }
       g.add_point(d.dot(t1), d.dot(t2), c->area, h, spring, slip, viscous);

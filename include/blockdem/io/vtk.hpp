@@ -174,7 +174,7 @@ template <class Simulation>
 void write_contacts_vtu(const std::string& path, const Simulation& simulation) {
   std::vector<Vec3> points, normal;
   BlockFields fields;
-  for (const char* name : {"normal_stress", "shear_stress", "gap", "area", "damage"}) fields[name];
+  for (const char* name : {"normal_stress", "shear_stress", "gap", "area", "damage", "never_bonded"}) fields[name];
   simulation.visit_contacts([&](const auto& c) {
     points.push_back(c.position);
     normal.push_back(c.normal);
@@ -183,6 +183,7 @@ void write_contacts_vtu(const std::string& path, const Simulation& simulation) {
     fields["gap"].push_back(c.gap);
     fields["area"].push_back(c.area);
     fields["damage"].push_back(c.damage);
+    fields["never_bonded"].push_back(c.never_bonded ? 1.0 : 0.0);
   });
   write_points_vtu(path, points, fields, {{"normal", normal}});
 }

@@ -85,6 +85,8 @@ class DeformableState {
   /// it cost the whole detection's time: some 4 s for the deformable vault's 3,000 pairs and 16,000 CPs).
   std::array<std::unordered_map<std::uint64_t, std::size_t>, 2 * sizeof...(Laws)> previous_contacts;
   std::unordered_set<std::uint64_t> previous_sides;  // (node block, face block) of the old CPs: the side kept
+  /// The old CPs of each group by (node block, face block): the joint a CP that the pair adds belongs to.
+  std::array<std::unordered_map<std::uint64_t, std::vector<std::size_t>>, 2 * sizeof...(Laws)> previous_pairs;
 
   template <class F>
   void for_each_group(F&& f) {
@@ -199,6 +201,7 @@ class DeformableState {
     build_contact_lists(m);
     detected_node_position = m.deformable.nodes.position;
     for (auto& p : previous_contacts) p.clear();
+    for (auto& p : previous_pairs) p.clear();
     previous_sides.clear();
   }
 
@@ -213,6 +216,7 @@ class DeformableState {
           for (std::size_t k = 0; k < og.size(); ++k) {
             index.emplace(contact_key(og.node[k], og.face_block[k]), k);
             previous_sides.insert(contact_key(og.node_block[k], og.face_block[k]));
+            previous_pairs[I][contact_key(og.node_block[k], og.face_block[k])].push_back(k);
           }
         }(),
         ...);
@@ -817,7 +821,9 @@ class DeformableState {
       }
     }
     using L = std::tuple_element_t<law_index<Params>(), std::tuple<Laws...>>;
-    auto add = [&](auto& g, auto& og, const std::unordered_map<std::uint64_t, std::size_t>& previous) {
+    auto add = [&](auto& g, auto& og, const std::unordered_map<std::uint64_t, std::size_t>& previous,
+                   const std::unordered_map<std::uint64_t, std::vector<std::size_t>>& pairs) {
+      const auto pair = pairs.find(contact_key(ns, fs));
       std::size_t pi = 0;
       while (pi < g.properties.size() && !(g.properties[pi] == params)) ++pi;
       if (pi == g.properties.size()) g.properties.push_back(params);
@@ -878,10 +884,24 @@ class DeformableState {
         g.history[k].gap = gap;
         if (keep_history) {
           const auto it = previous.find(contact_key(node, fs));
-          if (it == previous.end()) {
-            // As for rigid blocks (Simulation::assign_contacts): a CP that appears during the run was never part
-            // of a bonded joint and starts from the law's failed state.
-            if constexpr (requires { h.failed; }) g.history[k].failed = 1;
+          if (it == previous.end() && pair != pairs.end()) {
+            // As for rigid blocks (Simulation::assign_contacts): a node that the pair's joint adds takes the state
+            // of the joint where it is, that of the closest old CP of the pair (its own gap; no damping state).
+            std::size_t closest = pair->second.front();
+            for (std::size_t j : pair->second)
+              if ((x[og.node[j]] - xn).squaredNorm() < (x[og.node[closest]] - xn).squaredNorm()) closest = j;
+            g.history[k] = og.history[closest];
+            g.history[k].gap = gap;
+            if constexpr (requires { h.shear; }) {
+              const auto [ot1, ot2] = old_tangents(m, og, closest);
+              const Vec3 nt2 = n.cross(tt1);
+              const Vec3 shear = g.history[k].shear[0] * ot1 + g.history[k].shear[1] * ot2;
+              g.history[k].shear = {shear.dot(tt1), shear.dot(nt2)};
+            }
+          } else if (it == previous.end()) {
+            // A CP where the pair had none (an impact, a new pair after sliding) was never part of a bonded joint
+            // and starts from the law's failed state, as for rigid blocks.
+            if constexpr (requires { h.failed; }) g.history[k].failed = contact::never_bonded;
             if constexpr (requires { h.damage; }) g.history[k].damage = 1.0;
           } else {
             const std::size_t o = it->second;
@@ -905,9 +925,10 @@ class DeformableState {
     };
     constexpr std::size_t rigid_face = law_index<Params>(), deformable_face = sizeof...(Laws) + law_index<Params>();
     if (m.deformable.is_deformable(fs))
-      add(std::get<deformable_face>(groups), std::get<deformable_face>(old), previous_contacts[deformable_face]);
+      add(std::get<deformable_face>(groups), std::get<deformable_face>(old), previous_contacts[deformable_face],
+          previous_pairs[deformable_face]);
     else
-      add(std::get<rigid_face>(groups), std::get<rigid_face>(old), previous_contacts[rigid_face]);
+      add(std::get<rigid_face>(groups), std::get<rigid_face>(old), previous_contacts[rigid_face], previous_pairs[rigid_face]);
   }
 
   template <class G>

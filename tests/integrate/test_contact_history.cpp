@@ -1,14 +1,17 @@
-// Node contacts over re-detections: which CPs keep their joint's history and which start as new contacts. The
-// reference is the rule for rigid blocks (Simulation::assign_contacts): a CP found at the first detection is part of
-// a bonded joint; one that appears during the run (an impact, a slide) never was and starts from the law's failed
-// state; one that is found again keeps its history.
+// Contact points over re-detections: which keep their joint's history and which start as new contacts, for rigid
+// blocks and for the nodes of deformable ones alike. A CP found at the first detection is part of a bonded joint;
+// one found again keeps its history; one that the joint's new polygon adds takes the state of the joint where it
+// is (its closest old CP); one where the pair had no contact (an impact, a new pair after sliding) never was
+// bonded and starts from the law's failed state, marked contact::never_bonded.
 
 #include <doctest/doctest.h>
 
 #include "blockdem/contact/mohr_coulomb.hpp"
+#include "blockdem/core/units.hpp"
 #include "blockdem/damping/none.hpp"
 #include "blockdem/geometry/convex_polyhedron.hpp"
 #include "blockdem/integrate/simulation.hpp"
+#include "fixtures.hpp"
 
 using namespace blockdem;
 
@@ -19,13 +22,14 @@ auto bonded = [](int, int) { return contact::MohrCoulomb::Parameters(1e10, 4e9, 
 using Sim = Simulation<damping::None, contact::MohrCoulomb>;
 
 struct Counts {
-  long long points = 0, failed = 0;
+  long long points = 0, failed = 0, never_bonded = 0;
 };
 Counts count(const Sim& sim) {
   Counts c;
   sim.visit_contact_histories([&](std::size_t, std::size_t, const auto& h) {
     ++c.points;
     c.failed += h.failed != 0;
+    c.never_bonded += h.failed == contact::never_bonded;
   });
   return c;
 }
@@ -56,10 +60,12 @@ TEST_CASE("node contacts: found at the start they are bonded, and a re-detection
   MESSAGE("node CPs: " << start.points << " at the start, " << again.points << " after a re-detection, " << again.failed << " failed");
   CHECK(again.points == start.points);
   CHECK(again.failed == 0);  // every CP found again: none comes back as a new (failed) contact
+  CHECK(again.never_bonded == 0);
 }
 
-TEST_CASE("node contacts: CPs that appear during the run start failed, as rigid blocks' do") {
-  // The stack dropped from 2 mm: the joints close during the run, so they never were bonded.
+TEST_CASE("node contacts: CPs that appear during the run start failed, as rigid blocks' do, and stay marked") {
+  // The stack dropped from 2 mm: the joints close during the run, so they never were bonded. The law keeps the
+  // mark (contact::never_bonded) through its updates, so that damage counts can leave such contacts out.
   auto m = stack(2e-3);
   Sim sim(m, damping::None{}, bonded);
   REQUIRE(count(sim).points == 0);
@@ -69,4 +75,26 @@ TEST_CASE("node contacts: CPs that appear during the run start failed, as rigid 
   MESSAGE("node CPs after the landing: " << landed.points << ", failed " << landed.failed << " (" << sim.detections() << " detections)");
   REQUIRE(landed.points > 0);
   CHECK(landed.failed == landed.points);
+  CHECK(landed.never_bonded == landed.points);
+  long long marked = 0;
+  sim.visit_contacts([&](const auto& c) { marked += c.never_bonded && c.damage == 0; });
+  CHECK(marked == landed.points);  // output: new contacts, not damage
+}
+
+TEST_CASE("contact history: a rigid block turned on its joint keeps the bond at the corners its new polygon adds") {
+  // A 1 m cube on a bonded joint, turned 10 degrees about the vertical and detected again: its four corner CPs
+  // move by some 0.09 m, beyond the matching distance (1 mm), so all four are new CPs of the same joint. Each
+  // takes the state of the closest old one: bonded, not a new contact.
+  auto s = test::block_on_base(1, 1, 1);
+  s.model.gravity = Vec3::Zero();
+  Sim sim(s.model, damping::None{}, bonded);
+  REQUIRE(count(sim).points == 4);
+  auto& b = s.model.bodies;
+  b.orientation[s.block] = (Quaternion(Eigen::AngleAxisd(10.0 * pi / 180, Vec3::UnitZ())) * b.orientation[s.block]).normalized();
+  b.rotation[s.block] = b.orientation[s.block].toRotationMatrix();
+  sim.redetect();
+  const auto turned = count(sim);
+  CHECK(turned.points == 4);
+  CHECK(turned.failed == 0);
+  CHECK(turned.never_bonded == 0);
 }
