@@ -127,12 +127,20 @@ def plot_damage(runs, path):
             masonry = np.isin(c["component_a"], ["vault", "infill"]) & np.isin(c["component_b"], ["vault", "infill"])
             order = np.argsort(c["z"][masonry])  # the extrados (highest) drawn last, as seen from above
             x, y, d = c["x"][masonry][order], c["y"][masonry][order], c["damage"][masonry][order]
-            intact = d <= 0
+            # Contact points made during the run (never bonded: no tension, no cohesion): a joint that broke,
+            # opened and closed again, or blocks that touch anew. Older outputs have no such column.
+            new = c["never_bonded"][masonry][order] > 0 if "never_bonded" in c else np.zeros_like(d, dtype=bool)
+            intact = (d <= 0) & ~new
             ax.scatter(x[intact], y[intact], s=0.3, color="0.85", linewidths=0)
-            sc = ax.scatter(x[~intact], y[~intact], c=d[~intact], s=3, linewidths=0, cmap="plasma_r", vmin=0, vmax=1)
-            damaged = int(np.count_nonzero(d > 0))
-            ax.set_title(f"{r.label}, level {level:g} %: {damaged} damaged CPs", fontsize=9)
+            ax.scatter(x[new], y[new], s=2, color="0.35", linewidths=0,
+                       label="made during the run (no bond)" if row == 0 and col == 0 else None)
+            damaged_mask = (d > 0) & ~new
+            sc = ax.scatter(x[damaged_mask], y[damaged_mask], c=d[damaged_mask], s=3, linewidths=0, cmap="plasma_r", vmin=0, vmax=1)
+            damaged = int(np.count_nonzero(damaged_mask))
+            ax.set_title(f"{r.label} {level:g} %: {damaged} damaged, {int(np.count_nonzero(new))} new CPs", fontsize=9)
     fig.colorbar(sc, ax=axes, shrink=0.6, label="joint damage d")
+    if any(ax.get_legend_handles_labels()[0] for ax in axes.flat):
+        fig.legend(loc="lower center", fontsize=8, markerscale=4, frameon=False)
     fig.suptitle(f"Joint damage, vault and infill, plan view (x east, y north)\n({input_note(runs)})", fontsize=9)
     fig.savefig(path, dpi=110)
     plt.close(fig)
