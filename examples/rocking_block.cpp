@@ -8,7 +8,6 @@
 //
 // FILE has two columns, time (s) and acceleration (m/s^2, or g with --in-g). Exit status 2 on bad input.
 
-#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -19,6 +18,9 @@
 #include "blockdem/analysis/rocking.hpp"
 #include "blockdem/io/columns.hpp"
 #include "blockdem/io/json.hpp"
+#include "blockdem/motion/acceleration_unit.hpp"
+#include "blockdem/motion/processing.hpp"
+#include "blockdem/motion/synthetic.hpp"
 #include "cli.hpp"
 
 int main(int argc, char** argv) {
@@ -44,23 +46,15 @@ int main(int argc, char** argv) {
   programs::add_deformable_options(app, o, "the block");
   if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
   try {
-    io::TwoColumns record;
     if (!history.empty()) {
-      record = io::read_two_columns(history);
-      if (in_g)
-        for (double& a : record.y) a *= 9.80665;
-      o.base_acceleration = [&record](double t) {
-        if (t <= record.x.front()) return t < record.x.front() ? 0.0 : record.y.front();
-        if (t >= record.x.back()) return 0.0;
-        const auto it = std::upper_bound(record.x.begin(), record.x.end(), t);
-        const auto k = static_cast<std::size_t>(it - record.x.begin()) - 1;
-        const double f = (t - record.x[k]) / (record.x[k + 1] - record.x[k]);
-        return (1 - f) * record.y[k] + f * record.y[k + 1];
-      };
+      const auto columns = io::read_two_columns(history);
+      const auto unit = in_g ? motion::AccelerationUnit::g : motion::AccelerationUnit::m_s2;
+      o.base_acceleration = motion::scale(motion::record_from_samples(columns.x, columns.y, history), motion::to_m_s2(unit));
     } else {
       // Ramped in over 0.2 s (long against the joint's vibration period): a sudden step would make the undamped
-      // elastic joint overshoot and lift the heel below the static threshold g tan(alpha).
-      o.base_acceleration = [constant](double t) { return constant * std::min(1.0, t / 0.2); };
+      // elastic joint overshoot and lift the heel below the static threshold g tan(alpha). Held a step past the
+      // duration, which the last timestep may pass.
+      o.base_acceleration = motion::ramp_record(constant, 0.2, o.duration + 0.01, 0.01);
     }
     const auto r = analysis::analyse_rocking(o);
     if (!out_path.empty()) {

@@ -12,6 +12,7 @@
 #include "blockdem/damping/local.hpp"
 #include "blockdem/damping/none.hpp"
 #include "blockdem/integrate/simulation.hpp"
+#include "blockdem/motion/base_motion.hpp"
 #include "fixtures.hpp"
 
 using namespace blockdem;
@@ -66,7 +67,10 @@ TEST_CASE("friction: Newmark's block slides V^2/(2 mu g)(1 - mu g/A) under a rec
   REQUIRE(settle.solve_to_equilibrium(1e-6, 100000));
   Simulation<damping::None, MC> sim(settle, damping::None{});
   const double t0 = sim.time();
-  s.model.base_velocity = [&](double t) { return Vec3(A * std::clamp(t - t0, 0.0, td), 0, 0); };
+  motion::Record pulse;  // two samples td apart, linear between them: A throughout
+  pulse.dt = td;
+  pulse.acceleration = {A, A};
+  s.model.base_motion = motion::BaseMotion(pulse, {}, Vec3::UnitX(), t0);
   const double relative0 = s.model.bodies.position[s.block].x() - s.model.bodies.position[s.base].x();
   const double duration = td + V / (mu * g) + 0.2;  // until the block has caught up, and a little more
   while (sim.time() - t0 < duration) sim.step();

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/units.hpp"
@@ -57,4 +58,33 @@ TEST_CASE("processing: downsampling keeps content below the new Nyquist frequenc
   CHECK(worst < 0.01);  // without the anti-alias filter the 40 Hz term would leave errors of up to 0.5
   CHECK_THROWS_AS(resample(record, 0.0), InvalidArgument);
   CHECK_THROWS_WITH_AS(resample(record, 15.0), doctest::Contains("fewer than 3 samples"), InvalidArgument);
+}
+
+TEST_CASE("processing: samples at given times become a record; even ones as they were, uneven ones on a finer grid") {
+  // Even, with the rounding of decimal times (0.07 - 0.06 = 0.010000000000000009): the same samples.
+  std::vector<double> times, values;
+  for (int i = 0; i <= 50; ++i) {
+    times.push_back(0.5 + 0.01 * i);
+    values.push_back(std::sin(0.3 * i));
+  }
+  const auto even = record_from_samples(times, values, "even.txt");
+  CHECK(even.size() == 51);
+  CHECK(even.dt == doctest::Approx(0.01).epsilon(1e-12));
+  CHECK(even.start_time == 0.5);
+  for (std::size_t i = 0; i < values.size(); ++i)
+    CHECK(even.acceleration[i] == doctest::Approx(values[i]).epsilon(1e-12));
+  // Uneven: steps 0.02 then 0.01; the polyline through (0, 0), (0.02, 2), (0.03, 1) at dt = 0.01.
+  const auto uneven = record_from_samples({0.0, 0.02, 0.03}, {0.0, 2.0, 1.0}, "uneven.txt");
+  REQUIRE(uneven.size() == 4);
+  CHECK(uneven.dt == doctest::Approx(0.01));
+  CHECK(uneven.acceleration[1] == doctest::Approx(1.0));
+  CHECK(uneven.acceleration[2] == doctest::Approx(2.0));
+  CHECK(uneven.acceleration[3] == 1.0);
+  CHECK_THROWS_WITH_AS(record_from_samples({0.0, 0.0}, {1.0, 2.0}, "f.txt"),
+                       doctest::Contains("f.txt: time 0.000000 s of sample 1 does not increase"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(record_from_samples({0.0}, {1.0}, "f.txt"), doctest::Contains("at least 2"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(record_from_samples({0.0, 1e-12, 1.0}, {1.0, 1.0, 1.0}, "f.txt"), doctest::Contains("more than 1e8"),
+                       InvalidArgument);
+  CHECK_THROWS_WITH_AS(record_from_samples({0.0, 1.0}, {1.0}, "f.txt"), doctest::Contains("2 times for 1 accelerations"),
+                       InvalidArgument);
 }

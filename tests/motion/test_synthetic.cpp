@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <sstream>
+#include <vector>
 
 #include "blockdem/core/error.hpp"
 #include "blockdem/motion/arias.hpp"
@@ -70,4 +71,23 @@ TEST_CASE("synthetic records: other peaks are met too; impossible ones are refus
   CHECK_THROWS_WITH_AS(synthetic_record(spec), "synthetic record: PGA, PGV and PGD must be > 0", InvalidArgument);
   spec.pgd = 1e-5;  // far below what the pulse alone displaces
   CHECK_THROWS_WITH_AS(synthetic_record(spec), doctest::Contains("cannot be met with this recipe"), InvalidArgument);
+}
+
+TEST_CASE("ramp record: linear to the level over the ramp, held to the duration, integrated exactly") {
+  // v = level t^2 / (2 ramp) on the ramp, level (t - ramp / 2) after it: exact at the samples (trapezoid rule).
+  const auto ramp = ramp_record(2.0, 0.2, 1.0, 0.01);
+  CHECK(ramp.size() == 101);
+  CHECK(ramp.synthetic);
+  CHECK(ramp.acceleration.front() == 0.0);
+  CHECK(ramp.acceleration[10] == doctest::Approx(1.0));
+  CHECK(ramp.acceleration[20] == doctest::Approx(2.0));
+  CHECK(ramp.acceleration.back() == 2.0);
+  const auto motion = integrate(ramp);
+  CHECK(motion.velocity[10] == doctest::Approx(2.0 * 0.01 / 0.4).epsilon(1e-12));
+  CHECK(motion.velocity.back() == doctest::Approx(2.0 * (1.0 - 0.1)).epsilon(1e-12));
+  CHECK(ramp_record(1.0, 0.2, 1.005, 0.01).size() == 102);  // covers the duration
+  CHECK(ramp_record(3.0, 0.0, 0.02, 0.01).acceleration == std::vector<double>{3.0, 3.0, 3.0});  // a step
+  CHECK_THROWS_WITH_AS(ramp_record(1.0, -0.1, 1.0, 0.01), doctest::Contains("ramp time must be >= 0 s"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(ramp_record(1.0, 0.1, 1.0, 0.0), doctest::Contains("time step must be > 0 s"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(ramp_record(1.0, 0.1, 0.001, 0.01), doctest::Contains("at least one time step"), InvalidArgument);
 }

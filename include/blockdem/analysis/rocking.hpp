@@ -4,7 +4,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -16,6 +15,9 @@
 #include "blockdem/damping/none.hpp"
 #include "blockdem/geometry/convex_polyhedron.hpp"
 #include "blockdem/integrate/simulation.hpp"
+#include "blockdem/motion/base_motion.hpp"
+#include "blockdem/motion/processing.hpp"
+#include "blockdem/motion/record.hpp"
 
 namespace blockdem::analysis {
 
@@ -28,8 +30,14 @@ struct RockingOptions : DeformableOptions {
   double friction_angle_deg = 45;
   double normal_stiffness = 1e9;  // Pa/m; shear stiffness equal
   double duration = 2.0;  // s
-  /// Base acceleration along x (m/s^2) at time t (s), from t = 0.
-  std::function<double(double)> base_acceleration = [](double) { return 0.0; };
+  /// Base acceleration along x: a record whose start_time (s, >= 0) counts from the end of the settling. The base is
+  /// at rest before it and keeps, after it, the velocity it ends with. Empty (the default): the base stays at rest.
+  motion::Record base_acceleration;
+  /// s: a record with a longer step is resampled to a whole fraction of it no longer than this (the same
+  /// piecewise-linear acceleration) before the toolkit integrates it. The table's velocity is linear between samples:
+  /// at a record's own step (5-20 ms) its acceleration would be a staircase that shakes the joint (9 ms period for
+  /// the default block).
+  double base_sampling = 1e-4;
   double uplift_rotation = 1e-3;  // rad: a rotation beyond this is uplift (the elastic rocking of the joint is ~1e-4)
   double record_interval = 1e-3;  // s
 
@@ -44,6 +52,12 @@ struct RockingOptions : DeformableOptions {
     check(normal_stiffness > 0, "normal stiffness must be > 0 Pa/m");
     check(duration > 0 && duration <= 1e4, "duration must be in (0, 1e4] s");
     check(record_interval > 0, "record interval must be > 0 s");
+    check(base_sampling > 0 && std::isfinite(base_sampling), "base sampling must be > 0 s");
+    if (!base_acceleration.acceleration.empty()) {
+      base_acceleration.validate("rocking block: base acceleration");
+      check(base_acceleration.start_time >= 0 && std::isfinite(base_acceleration.start_time),
+            "the base acceleration's start time must be >= 0 s (from the end of the settling)");
+    }
   }
 };
 
@@ -78,20 +92,14 @@ inline RockingResult analyse_rocking(const RockingOptions& o) {
   if (o.target_dt > 0) r.mass_increase_percent = settle.scale_density_to(o.target_dt).mass_increase_percent;
   settle.solve_to_equilibrium(1e-6, 200000);
   Simulation<damping::None, contact::MohrCoulomb> sim(settle, damping::None{});
-  // Base velocity: the integral of the acceleration, by the trapezoid rule on the timestep grid.
   const double t0 = sim.time();
   const double dt = sim.timestep();
-  std::vector<double> velocity{0.0};
-  const auto steps = static_cast<long long>(std::ceil(o.duration / dt)) + 2;
-  velocity.reserve(static_cast<std::size_t>(steps) + 1);
-  for (long long n = 1; n <= steps; ++n)
-    velocity.push_back(velocity.back() + 0.5 * dt * (o.base_acceleration((n - 1) * dt) + o.base_acceleration(n * dt)));
-  model.base_velocity = [&, t0, dt](double t) {
-    const double u = std::max(0.0, (t - t0) / dt);
-    const auto n = std::min(static_cast<std::size_t>(u), velocity.size() - 2);
-    const double f = u - static_cast<double>(n);
-    return Vec3((1 - f) * velocity[n] + f * velocity[n + 1], 0, 0);
-  };
+  // The base follows the record from its start after the settling, integrated by the toolkit.
+  if (const auto& a = o.base_acceleration; !a.acceleration.empty()) {
+    const double parts = std::ceil(a.dt / o.base_sampling * (1 - 1e-9));  // k samplings, to rounding, split in k
+    model.base_motion = motion::BaseMotion(parts > 1 ? motion::resample(a, a.dt / parts) : a, {}, Vec3::UnitX(),
+                                           t0 + a.start_time);
+  }
   const Quaternion q0 = model.bodies.orientation[block];
   r.timestep = dt;
   r.nodes = model.deformable.nodes.size();
@@ -124,7 +132,7 @@ inline RockingResult analyse_rocking(const RockingOptions& o) {
     if (t >= next_record) {
       r.time.push_back(t);
       r.rotation.push_back(theta);
-      r.base_acceleration.push_back(o.base_acceleration(t));
+      r.base_acceleration.push_back(model.base_motion.acceleration(sim.time()).x());
       next_record += o.record_interval;
     }
     if (r.overturned && std::abs(theta) > 1.2) break;  // lying on its side: nothing more to learn

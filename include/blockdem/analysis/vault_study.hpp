@@ -319,11 +319,7 @@ inline FreeVibrationResult measure_free_vibration(VaultStudyOptions o, double du
     const Vec3 reference = where(), table_reference = b.position[table];
     const Vec3 axis = o.axis == 'x' ? Vec3::UnitX() : Vec3::UnitY();
     const double t0 = sim.time();
-    model.base_velocity = [=](double t) {
-      const double u = (t - t0) / pulse_duration;
-      const double v = u > 0 && u < 1 ? pulse_velocity * std::sin(2 * pi * u) : 0.0;
-      return Vec3(v * axis);
-    };
+    model.base_motion = motion::BaseMotion(motion::SineVelocity{pulse_velocity, pulse_duration, 1, axis, t0});
     std::vector<double> time, response;
     const auto every = std::max<long long>(1, std::llround(2e-4 / sim.timestep()));  // uniform sampling for the filter
     const double interval = static_cast<double>(every) * sim.timestep();
@@ -334,7 +330,7 @@ inline FreeVibrationResult measure_free_vibration(VaultStudyOptions o, double du
       time.push_back(sim.time() - t0);
       response.push_back(u.dot(axis));
     }
-    model.base_velocity = [](double) { return Vec3::Zero(); };
+    model.base_motion = motion::BaseMotion::at_rest();
     fv.time = time;
     fv.response = response;
     try {
@@ -431,9 +427,9 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
         cursor.level_start = sim.time();
         cursor.start_velocity = cursor.table_velocity;  // each level starts where the last left the table
       }
-      const motion::BaseMotion table_motion(motion::scale(cut, level / o.record_level), {}, axis, cursor.level_start,
-                                            cursor.start_velocity);
-      model.base_velocity = [&table_motion](double t) { return table_motion.velocity_vector(t); };
+      const motion::RecordMotion table_motion(motion::scale(cut, level / o.record_level), {}, axis, cursor.level_start,
+                                              cursor.start_velocity);
+      model.base_motion = motion::BaseMotion(table_motion);
       L.final_table_velocity = table_motion.final_velocity();
       L.duration = table_motion.duration() + o.rest;
       auto record = [&] {
@@ -493,7 +489,7 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
       }
       history.end_level();
       cursor.table_velocity = table_motion.final_velocity();
-      model.base_velocity = [v = Vec3(cursor.table_velocity * axis)](double) { return v; };  // table_motion ends here
+      model.base_motion = motion::BaseMotion::constant(cursor.table_velocity * axis);  // where this level left it
       cursor.in_level = false;
       r.levels.push_back(L);
       if (!o.out_dir.empty()) {

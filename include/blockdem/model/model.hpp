@@ -2,7 +2,6 @@
 // The model: rigid blocks in struct-of-arrays storage, their shapes in body frames, fixity and base motion, gravity.
 
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
@@ -12,8 +11,8 @@
 #include "blockdem/geometry/convex_polyhedron.hpp"
 #include "blockdem/geometry/mass_properties.hpp"
 #include "blockdem/geometry/tetrahedral_mesh.hpp"
-#include "blockdem/io/checkpoint.hpp"
 #include "blockdem/model/deformable.hpp"
+#include "blockdem/motion/base_motion.hpp"
 
 namespace blockdem::model {
 
@@ -236,20 +235,25 @@ class Model {
   RigidBodies bodies;
   DeformableBodies deformable;  // nodes, tetrahedra and trusses (empty for a rigid model)
   Vec3 gravity = Vec3(0, 0, -9.81);  // m/s^2
-  /// Velocity of base blocks at time t (s), m/s; zero unless set.
-  std::function<Vec3(double)> base_velocity = [](double) { return Vec3::Zero(); };
+  /// The motion of the base blocks (the shake table): at rest unless set. Not saved in checkpoints: a model loaded
+  /// from one gets its base motion from the caller, who sets it again as when the checkpoint was written.
+  motion::BaseMotion base_motion;
+  /// Velocity of the base blocks at time t (s), m/s: what the engine moves them with.
+  Vec3 base_velocity(double t) const { return base_motion.velocity(t); }
 
   /// The state a simulation changes (or a user may change between steps), for checkpoints (io/checkpoint.hpp):
   /// load_state() into a model built the same way gives it back bitwise. Throws InvalidArgument if the counts of
   /// blocks, nodes or tetrahedra differ.
-  void save_state(io::CheckpointWriter& out) const { visit_state(*this, out); }
-  void load_state(io::CheckpointReader& in) { visit_state(*this, in); }
+  template <class Writer>
+  void save_state(Writer& out) const { visit_state(*this, out); }
+  template <class Reader>
+  void load_state(Reader& in) { visit_state(*this, in); }
 
  private:
   /// The one list of the saved fields, for both directions. Not saved, because the model is built again from its
   /// description before loading: the blocks' names, shapes, joint tags and volumes; the deformable blocks' meshes
   /// (nodes' real masses and owners, the tetrahedra but their stresses, materials, boundaries, reference positions);
-  /// the trusses; base_velocity (a function of time: the time is in the simulation's state).
+  /// the trusses; base_motion (the caller's input, a function of the time, which is in the simulation's state).
   template <class Self, class Archive>
   static void visit_state(Self& m, Archive& ar) {
     auto& b = m.bodies;

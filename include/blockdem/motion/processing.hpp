@@ -1,8 +1,9 @@
 #pragma once
-// Amplitude scaling and resampling of a record.
+// Amplitude scaling and resampling of a record; a record from samples at uneven times.
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,49 @@ inline Record resample(Record record, double dt) {
   }
   record.acceleration = std::move(resampled);
   record.dt = dt;
+  return record;
+}
+
+/// The record of accelerations (m/s^2) given at increasing, not necessarily even, times (s): the polyline through
+/// them, sampled from the first time to the last at the longest even step no longer than their shortest one (to
+/// 1e-6: the rounding of decimal times adds no step). Evenly spaced samples come back as they were, to rounding;
+/// the corners of uneven ones are kept where they fall on the new grid. Errors name `name`.
+inline Record record_from_samples(const std::vector<double>& times, const std::vector<double>& acceleration,
+                                  const std::string& name) {
+  if (times.size() != acceleration.size())
+    throw InvalidArgument(name + ": " + std::to_string(times.size()) + " times for " +
+                          std::to_string(acceleration.size()) + " accelerations");
+  if (times.size() < 2) throw InvalidArgument(name + ": a record needs at least 2 samples");
+  double shortest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    if (!std::isfinite(times[i]) || !std::isfinite(acceleration[i]))
+      throw InvalidArgument(name + ": sample " + std::to_string(i) + " is not finite");
+    if (i > 0) {
+      if (!(times[i] > times[i - 1]))
+        throw InvalidArgument(name + ": time " + std::to_string(times[i]) + " s of sample " + std::to_string(i) +
+                              " does not increase");
+      shortest = std::min(shortest, times[i] - times[i - 1]);
+    }
+  }
+  const double span = times.back() - times.front();
+  const double even_steps = std::ceil(span / shortest * (1.0 - 1e-6));
+  if (!(even_steps <= 1e8))
+    throw InvalidArgument(name + ": its shortest step, " + std::to_string(shortest) +
+                          " s, would need more than 1e8 even ones");
+  const auto steps = static_cast<std::size_t>(even_steps);
+  Record record;
+  record.name = name;
+  record.source = "samples at given times";
+  record.dt = span / static_cast<double>(steps);
+  record.start_time = times.front();
+  record.acceleration.resize(steps + 1);
+  std::size_t k = 0;  // times[k] <= t < times[k + 1]
+  for (std::size_t j = 0; j <= steps; ++j) {
+    const double t = j == steps ? times.back() : record.time(j);
+    while (k + 2 < times.size() && times[k + 1] <= t) ++k;
+    const double f = std::clamp((t - times[k]) / (times[k + 1] - times[k]), 0.0, 1.0);
+    record.acceleration[j] = (1.0 - f) * acceleration[k] + f * acceleration[k + 1];
+  }
   return record;
 }
 

@@ -2,8 +2,10 @@
 // A deterministic synthetic ground motion with prescribed peaks, and the default that stands in for the AQA75 input
 // of the paper (Sect. 2): the L'Aquila 2009 AQA record is not redistributable, so blockdem generates a record with
 // its published peaks (PGA 4.25 m/s^2, PGV 26.33 cm/s, PGD 37.0 mm), its dominant period (0.526 s) and its length
-// (25 s). It is SYNTHETIC, not the recording: every record it returns says so in its name, source and flag.
+// (25 s). It is SYNTHETIC, not the recording: every record it returns says so in its name, source and flag. And a
+// ramp to a constant acceleration, the simplest test input.
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -125,5 +127,28 @@ inline SyntheticRecordSpec aqa75_spec() {
 /// The synthetic stand-in for the paper's AQA75 input (Sect. 2): PGA 4.25 m/s^2, PGV 26.33 cm/s, PGD 37.0 mm,
 /// dominant period 0.526 s, 25 s at dt = 0.005 s. Synthetic: it is not the AQA recording.
 inline Record synthetic_aqa75() { return synthetic_record(aqa75_spec()); }
+
+/// An acceleration rising linearly from 0 to `level` (m/s^2) over `ramp` s (0: a step) and held, sampled every `dt` s
+/// from 0 to at least `duration` s. A ramp long against a model's periods loads it quasi-statically; a step makes an
+/// undamped one overshoot to twice the static response.
+inline Record ramp_record(double level, double ramp, double duration, double dt) {
+  if (!std::isfinite(level)) throw InvalidArgument("ramp record: the level must be finite");
+  if (!(ramp >= 0.0) || !std::isfinite(ramp)) throw InvalidArgument("ramp record: the ramp time must be >= 0 s");
+  if (!(dt > 0.0) || !std::isfinite(dt)) throw InvalidArgument("ramp record: the time step must be > 0 s");
+  if (!(duration >= dt) || !(duration / dt < 1e8))
+    throw InvalidArgument("ramp record: the duration must be at least one time step and at most 1e8 of them");
+  Record record;
+  record.name = "ramp to " + std::to_string(level) + " m/s^2 over " + std::to_string(ramp) + " s";
+  record.source = "synthetic (ramp)";
+  record.synthetic = true;
+  record.dt = dt;
+  const auto n = static_cast<std::size_t>(std::ceil(duration / dt * (1.0 - 1e-12))) + 1;
+  record.acceleration.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = record.time(i);
+    record.acceleration[i] = ramp > 0.0 ? level * std::min(1.0, t / ramp) : level;
+  }
+  return record;
+}
 
 }  // namespace blockdem::motion
