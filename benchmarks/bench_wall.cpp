@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "blockdem/integrate/simulation.hpp"
@@ -38,20 +39,22 @@ void step(benchmark::State& state) {
   state.counters["detections"] = sim.detections();
 }
 
-#define BLOCKDEM_WALL_BENCHMARK(Law, Damping) \
-  BENCHMARK(step<Law, Damping>)->Name("wall/" #Law "/" #Damping)->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond)
-
-BLOCKDEM_WALL_BENCHMARK(contact::Elastic, damping::None);
-BLOCKDEM_WALL_BENCHMARK(contact::Elastic, damping::MassProportional);
-BLOCKDEM_WALL_BENCHMARK(contact::Elastic, damping::Rayleigh);
-BLOCKDEM_WALL_BENCHMARK(contact::Elastic, damping::Maxwell<3>);
-BLOCKDEM_WALL_BENCHMARK(contact::MohrCoulomb, damping::None);
-BLOCKDEM_WALL_BENCHMARK(contact::MohrCoulomb, damping::MassProportional);
-BLOCKDEM_WALL_BENCHMARK(contact::MohrCoulomb, damping::Rayleigh);
-BLOCKDEM_WALL_BENCHMARK(contact::MohrCoulomb, damping::Maxwell<3>);
-BLOCKDEM_WALL_BENCHMARK(contact::ElastoSoftening, damping::None);
-BLOCKDEM_WALL_BENCHMARK(contact::ElastoSoftening, damping::MassProportional);
-BLOCKDEM_WALL_BENCHMARK(contact::ElastoSoftening, damping::Maxwell<3>);
+/// The rows of the table: every shipped law with each policy the table has for it (in_wall_table), named
+/// "wall/contact::Elastic/damping::None" and so on.
+[[maybe_unused]] const bool wall_benchmarks = [] {
+  for_each_type<contact::ShippedLaws>([](auto law) {
+    using Law = typename decltype(law)::type;
+    for_each_type<damping::ShippedPolicies>([](auto policy) {
+      using Damping = typename decltype(policy)::type;
+      if constexpr (in_wall_table<Law, Damping>()) {
+        const std::string name = "wall/" + short_name<Law>() + "/" + short_name<Damping>();
+        benchmark::RegisterBenchmark(name.c_str(), step<Law, Damping>)
+            ->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMicrosecond);
+      }
+    });
+  });
+  return true;
+}();
 
 // ---- the hand-fused reference: Elastic joints, no damping, rigid blocks, one function, no templates ----
 

@@ -136,7 +136,9 @@ int main(int argc, char** argv) {
   CLI::App app{"Maxwell<3> against MassProportional and None on the bench_wall wall, taking turns in one process"};
   std::string law = "elastic";
   int rounds = 50, steps = 8, threads = 1;
-  app.add_option("--law", law, "joint law")->check(CLI::IsMember({"elastic", "mohr-coulomb", "softening"}));
+  std::vector<std::string> laws;  // every shipped law, by its option name
+  for_each_type<contact::ShippedLaws>([&](auto each) { laws.push_back(law_option<typename decltype(each)::type>()); });
+  app.add_option("--law", law, "joint law")->check(CLI::IsMember(laws));
   app.add_option("--rounds", rounds, "turns per policy")->check(CLI::Range(1, 100000));
   app.add_option("--steps-per-turn", steps, "steps per turn (the first of each is not timed)")->check(CLI::Range(2, 100000));
   app.add_option("--threads", threads, "OpenMP threads besides one (each turn also run on this many)")->check(CLI::Range(1, 1024));
@@ -145,7 +147,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  if (law == "elastic") compare<contact::Elastic>(law, rounds, steps, threads);
-  else if (law == "mohr-coulomb") compare<contact::MohrCoulomb>(law, rounds, steps, threads);
-  else compare<contact::ElastoSoftening>(law, rounds, steps, threads);
+  for_each_type<contact::ShippedLaws>([&](auto each) {
+    using Law = typename decltype(each)::type;
+    if (law == law_option<Law>()) compare<Law>(law, rounds, steps, threads);
+  });
 }

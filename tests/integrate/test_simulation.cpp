@@ -5,23 +5,20 @@
 
 #include "../approx.hpp"
 #include "../area_frame.hpp"
+#include "../shipped.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
-#include "blockdem/contact/elastic.hpp"
-#include "blockdem/contact/mohr_coulomb.hpp"
-#include "blockdem/contact/softening.hpp"
+#include "blockdem/contact/laws.hpp"
 #include "blockdem/core/units.hpp"
-#include "blockdem/damping/local.hpp"
-#include "blockdem/damping/mass_proportional.hpp"
 #include "blockdem/damping/maxwell_fit.hpp"
-#include "blockdem/damping/none.hpp"
-#include "blockdem/damping/rayleigh.hpp"
-#include "blockdem/damping/stiffness_proportional.hpp"
+#include "blockdem/damping/policies.hpp"
 #include "blockdem/integrate/simulation.hpp"
 #include "fixtures.hpp"
 
@@ -65,43 +62,54 @@ TEST_CASE("simulation: a block on an elastic joint vibrates at sqrt(k A / m) (SD
   }
 }
 
-TEST_CASE("simulation: the damping ratio measured from free decay matches each policy's zeta(f) within 5 %") {
-  const double frequencies[] = {0.5, 2.0, 8.0, 30.0, 100.0};
-  SUBCASE("mass-proportional, 2 % at 5 Hz (eq. 10 with beta = 0)") {
-    const auto policy = damping::MassProportional::from_damping_ratio(0.02, 5.0);
-    for (double f : frequencies) {
-      CAPTURE(f);
-      const auto d = vibrate(policy, f, f < 1 ? 6 : 40);
-      CHECK(d.damping_ratio == test::approx(policy.damping_ratio(two_pi * f)).epsilon(0.05));
-    }
-  }
-  SUBCASE("stiffness-proportional, 2 % at 10 Hz (eq. 10 with alpha = 0)") {
-    const auto policy = damping::StiffnessProportional::from_damping_ratio(0.02, 10.0);
-    for (double f : frequencies) {
-      CAPTURE(f);
-      const auto d = vibrate(policy, f, f > 50 ? 6 : 40);
-      CHECK(d.damping_ratio == test::approx(policy.damping_ratio(two_pi * d.frequency_hz)).epsilon(0.05));
-    }
-  }
-  SUBCASE("Rayleigh, 3 % at 1 and 40 Hz (eq. 10)") {
-    const auto policy = damping::Rayleigh::from_two_frequencies(0.03, 1.0, 0.03, 40.0);
-    for (double f : frequencies) {
-      CAPTURE(f);
-      const auto d = vibrate(policy, f, 10);
-      CHECK(d.damping_ratio == test::approx(policy.damping_ratio(two_pi * d.frequency_hz)).epsilon(0.05));
-    }
-  }
-  SUBCASE("Maxwell<3>, fitted to 4 % over 1-40 Hz (eq. 19 at the measured frequency)") {
+namespace {
+/// The free-decay case of each policy with a damping ratio zeta(omega): the policy, the cycles measured at f (Hz),
+/// and whether zeta is compared at the nominal frequency f or at the measured one.
+template <class Damping>
+struct DecayCase {
+  const char* what;
+  Damping policy;
+  double (*cycles)(double f);
+  bool at_nominal_frequency;
+};
+template <class Damping>
+DecayCase<Damping> decay_case() {
+  if constexpr (std::is_same_v<Damping, damping::MassProportional>) {
+    return {"mass-proportional, 2 % at 5 Hz (eq. 10 with beta = 0)", damping::MassProportional::from_damping_ratio(0.02, 5.0),
+            [](double f) { return f < 1 ? 6.0 : 40.0; }, true};
+  } else if constexpr (std::is_same_v<Damping, damping::StiffnessProportional>) {
+    return {"stiffness-proportional, 2 % at 10 Hz (eq. 10 with alpha = 0)",
+            damping::StiffnessProportional::from_damping_ratio(0.02, 10.0), [](double f) { return f > 50 ? 6.0 : 40.0; }, false};
+  } else if constexpr (std::is_same_v<Damping, damping::Rayleigh>) {
+    return {"Rayleigh, 3 % at 1 and 40 Hz (eq. 10)", damping::Rayleigh::from_two_frequencies(0.03, 1.0, 0.03, 40.0),
+            [](double) { return 10.0; }, false};
+  } else if constexpr (std::is_same_v<Damping, damping::Maxwell<3>>) {
     damping::MaxwellFitOptions options;
     options.damping_ratio = 0.04;
-    const auto policy = damping::to_policy<3>(damping::fit_maxwell(options));
-    for (double f : frequencies) {
-      CAPTURE(f);
-      const auto d = vibrate(policy, f, 12);
-      CHECK(d.damping_ratio == test::approx(policy.damping_ratio(two_pi * d.frequency_hz)).epsilon(0.05));
-    }
+    return {"Maxwell<3>, fitted to 4 % over 1-40 Hz (eq. 19 at the measured frequency)",
+            damping::to_policy<3>(damping::fit_maxwell(options)), [](double) { return 12.0; }, false};
+  } else {
+    static_assert(test::unlisted<Damping>, "a new policy with a damping ratio: give it a free-decay case here");
   }
 }
+/// The policies with a damping ratio zeta(omega) (not None, nor Local, which is not viscous).
+template <class Damping>
+struct HasDampingRatio : std::bool_constant<requires(const Damping& d) { d.damping_ratio(1.0); }> {};
+}  // namespace
+
+TEST_CASE_TEMPLATE_DEFINE("simulation: the damping ratio measured from free decay matches each policy's zeta(f) within 5 %", Damping,
+                          damping_ratio_case) {
+  const double frequencies[] = {0.5, 2.0, 8.0, 30.0, 100.0};
+  const auto c = decay_case<Damping>();
+  INFO(c.what);
+  for (double f : frequencies) {
+    CAPTURE(f);
+    const auto d = vibrate(c.policy, f, c.cycles(f));
+    const double at = c.at_nominal_frequency ? f : d.frequency_hz;
+    CHECK(d.damping_ratio == test::approx(c.policy.damping_ratio(two_pi * at)).epsilon(0.05));
+  }
+}
+TEST_CASE_TEMPLATE_APPLY(damping_ratio_case, test::Select<HasDampingRatio, damping::ShippedPolicies>);
 
 namespace {
 /// Runs a vertical-only block at `factor` times the predicted critical timestep; returns max |z| / initial peak.
@@ -127,30 +135,54 @@ double growth_at(Damping damping, double factor, long long steps = 100000) {
 }
 }  // namespace
 
-TEST_CASE("simulation: stable at 0.95 and unstable at 1.1 times the critical timestep (eq. 1, 11, 20)") {
-  SUBCASE("no damping (eq. 1)") {
-    CHECK(growth_at(damping::None{}, 0.95) < 10);
-    CHECK(growth_at(damping::None{}, 1.1) > 1e3);
-  }
-  SUBCASE("local damping 0.8 (factor 1 / sqrt(1.8): the force of a mode that turns every step is amplified)") {
-    CHECK(damping::Local{}.timestep_factor(2e5) == test::approx(1 / std::sqrt(1.8)));
-    CHECK(growth_at(damping::Local{}, 0.95) < 10);
-    CHECK(growth_at(damping::Local{}, 1.1) > 1e3);
-  }
-  SUBCASE("stiffness-proportional, zeta = 0.3 at omega_max (eq. 11: factor 0.744)") {
-    const damping::StiffnessProportional policy{2 * 0.3 / 2e5};
-    CHECK(policy.timestep_factor(2e5) == test::approx(std::sqrt(1.09) - 0.3));
-    CHECK(growth_at(policy, 0.95) < 10);
-    CHECK(growth_at(policy, 1.1) > 1e3);
-  }
-  SUBCASE("Maxwell<3>, 4 % over 1-40 Hz (eq. 20: factor 1 / sqrt(1.39))") {
+namespace {
+/// The policies whose timestep factor the growth test checks, each with the factor expected at omega_max = 2e5 rad/s
+/// where the test states it.
+template <class Damping>
+struct StabilityCase {
+  const char* what;
+  Damping policy;
+  std::optional<double> factor;
+};
+template <class Damping>
+constexpr bool in_stability_test() {
+  if constexpr (std::is_same_v<Damping, damping::None> || std::is_same_v<Damping, damping::Local> ||
+                std::is_same_v<Damping, damping::StiffnessProportional> || std::is_same_v<Damping, damping::Maxwell<3>>)
+    return true;
+  else if constexpr (std::is_same_v<Damping, damping::MassProportional>) return false;  // factor 1: None's limit (eq. 1)
+  else if constexpr (std::is_same_v<Damping, damping::Rayleigh>) return false;  // StiffnessProportional's factor (eq. 11)
+  else static_assert(test::unlisted<Damping>, "a new policy: say whether the growth test checks its timestep factor");
+}
+template <class Damping>
+struct InStabilityTest : std::bool_constant<in_stability_test<Damping>()> {};
+template <class Damping>
+StabilityCase<Damping> stability_case() {
+  if constexpr (std::is_same_v<Damping, damping::None>) {
+    return {"no damping (eq. 1)", {}, std::nullopt};
+  } else if constexpr (std::is_same_v<Damping, damping::Local>) {
+    return {"local damping 0.8 (factor 1 / sqrt(1.8): the force of a mode that turns every step is amplified)", {},
+            1 / std::sqrt(1.8)};
+  } else if constexpr (std::is_same_v<Damping, damping::StiffnessProportional>) {
+    return {"stiffness-proportional, zeta = 0.3 at omega_max (eq. 11: factor 0.744)", {2 * 0.3 / 2e5}, std::sqrt(1.09) - 0.3};
+  } else {
+    static_assert(std::is_same_v<Damping, damping::Maxwell<3>>);
     damping::MaxwellFitOptions options;
     options.damping_ratio = 0.04;
-    const auto policy = damping::to_policy<3>(damping::fit_maxwell(options));
-    CHECK(growth_at(policy, 0.95) < 10);
-    CHECK(growth_at(policy, 1.1) > 1e3);
+    return {"Maxwell<3>, 4 % over 1-40 Hz (eq. 20: factor 1 / sqrt(1.39))", damping::to_policy<3>(damping::fit_maxwell(options)),
+            std::nullopt};
   }
 }
+}  // namespace
+
+TEST_CASE_TEMPLATE_DEFINE("simulation: stable at 0.95 and unstable at 1.1 times the critical timestep (eq. 1, 11, 20)", Damping,
+                          stability_case_test) {
+  const auto c = stability_case<Damping>();
+  INFO(c.what);
+  if (c.factor) CHECK(c.policy.timestep_factor(2e5) == test::approx(*c.factor));
+  CHECK(growth_at(c.policy, 0.95) < 10);
+  CHECK(growth_at(c.policy, 1.1) > 1e3);
+}
+TEST_CASE_TEMPLATE_APPLY(stability_case_test, test::Select<InStabilityTest, damping::ShippedPolicies>);
 
 TEST_CASE("simulation: an undamped elastic run conserves energy and is time reversible") {
   // A block free in all six degrees of freedom, spinning and bouncing on elastic joints without gravity.
@@ -273,14 +305,38 @@ double balance_after_decay(Damping damping) {
 }
 }  // namespace
 
-TEST_CASE("simulation: the energy balance closes with every damping policy (viscous dissipation accounted)") {
-  CHECK(balance_after_decay(damping::MassProportional::from_damping_ratio(0.05, 10)) < 1e-3);
-  CHECK(balance_after_decay(damping::StiffnessProportional::from_damping_ratio(0.05, 10)) < 1e-3);
-  CHECK(balance_after_decay(damping::Rayleigh::from_two_frequencies(0.03, 1, 0.03, 40)) < 1e-3);
-  damping::MaxwellFitOptions options;
-  options.damping_ratio = 0.05;
-  CHECK(balance_after_decay(damping::to_policy<3>(damping::fit_maxwell(options))) < 1e-3);
+namespace {
+/// The viscous policies of the energy-balance test, each with its coefficients.
+template <class Damping>
+constexpr bool in_balance_test() {
+  if constexpr (std::is_same_v<Damping, damping::MassProportional> || std::is_same_v<Damping, damping::StiffnessProportional> ||
+                std::is_same_v<Damping, damping::Rayleigh> || std::is_same_v<Damping, damping::Maxwell<3>>)
+    return true;
+  else if constexpr (std::is_same_v<Damping, damping::None>) return false;  // no viscous work (the undamped balance: above)
+  else if constexpr (std::is_same_v<Damping, damping::Local>) return false;  // not viscous: it settles a model
+  else static_assert(test::unlisted<Damping>, "a new policy: say whether the energy-balance test runs it");
 }
+template <class Damping>
+struct InBalanceTest : std::bool_constant<in_balance_test<Damping>()> {};
+template <class Damping>
+Damping balance_policy() {
+  if constexpr (std::is_same_v<Damping, damping::MassProportional>) return damping::MassProportional::from_damping_ratio(0.05, 10);
+  else if constexpr (std::is_same_v<Damping, damping::StiffnessProportional>) return damping::StiffnessProportional::from_damping_ratio(0.05, 10);
+  else if constexpr (std::is_same_v<Damping, damping::Rayleigh>) return damping::Rayleigh::from_two_frequencies(0.03, 1, 0.03, 40);
+  else {
+    static_assert(std::is_same_v<Damping, damping::Maxwell<3>>);
+    damping::MaxwellFitOptions options;
+    options.damping_ratio = 0.05;
+    return damping::to_policy<3>(damping::fit_maxwell(options));
+  }
+}
+}  // namespace
+
+TEST_CASE_TEMPLATE_DEFINE("simulation: the energy balance closes with every damping policy (viscous dissipation accounted)", Damping,
+                          balance_case) {
+  CHECK(balance_after_decay(balance_policy<Damping>()) < 1e-3);
+}
+TEST_CASE_TEMPLATE_APPLY(balance_case, test::Select<InBalanceTest, damping::ShippedPolicies>);
 
 TEST_CASE("simulation: bad input names the parameter, the block or the allowed range") {
   auto s = test::block_on_base(1, 1, 1);
@@ -449,23 +505,40 @@ std::array<int, 2> tractions_add_up(Damping policy, typename Law::Parameters joi
   return seen;
 }
 
+/// Each policy of the traction test on a dry Mohr-Coulomb joint (Maxwell<3>: fitted to the default 3 % over 1-40 Hz).
+/// Not Local: it is for settling, and takes out the rocking the test sets off (the block moves 0.07 mm, not 0.1).
+template <class Damping>
+struct InTractionTest : std::bool_constant<!std::is_same_v<Damping, damping::Local>> {};
+template <class Damping>
+Damping traction_policy() {
+  if constexpr (std::is_same_v<Damping, damping::None>) return {};
+  else if constexpr (std::is_same_v<Damping, damping::MassProportional>) return damping::MassProportional::from_damping_ratio(0.05, 5);
+  else if constexpr (std::is_same_v<Damping, damping::StiffnessProportional>) return damping::StiffnessProportional::from_damping_ratio(0.05, 20);
+  else if constexpr (std::is_same_v<Damping, damping::Rayleigh>) return damping::Rayleigh::from_two_frequencies(0.03, 1, 0.03, 40);
+  else if constexpr (std::is_same_v<Damping, damping::Maxwell<3>>) return damping::to_policy<3>(damping::fit_maxwell(damping::MaxwellFitOptions{}));
+  else static_assert(test::unlisted<Damping>, "a new policy: give it parameters for the traction test here");
+}
+
 }  // namespace
 
-TEST_CASE("output: the CP tractions, taken back from the joint histories and damping states, add up to the contact forces") {
+TEST_CASE_TEMPLATE_DEFINE("output: the CP tractions, taken back from the joint histories and damping states, add up to the contact forces",
+                          Damping, traction_sum_case) {
   // Reference: the contact pass's own resultant of the same stresses (the tractions are no longer stored per CP).
   const contact::MohrCoulomb::Parameters dry(1e9, 4e8, 0, 0, 0.6);
+  const auto seen = tractions_add_up<Damping, contact::MohrCoulomb>(traction_policy<Damping>(), dry);
+  if constexpr (damping::PerSpringDamping<Damping>) CHECK(seen[1] > 10);  // viscous stresses at the CPs were checked
+  else CHECK(seen[1] == 0);
+  if constexpr (damping::ContactFieldDamping<Damping>) CHECK(seen[0] > 5);  // also after the field was released
+}
+TEST_CASE_TEMPLATE_APPLY(traction_sum_case, test::Select<InTractionTest, damping::ShippedPolicies>);
+
+TEST_CASE("output: the CP tractions add up to the contact forces also for the other laws and Maxwell's per-CP form") {
   damping::MaxwellFitOptions options;
   const auto maxwell = damping::to_policy<3>(damping::fit_maxwell(options));
   auto per_cp = maxwell;
   per_cp.contact_field = false;
+  const contact::MohrCoulomb::Parameters dry(1e9, 4e8, 0, 0, 0.6);
   CHECK(tractions_add_up<damping::None, contact::Elastic>({}, {1e9, 4e8})[1] == 0);
-  CHECK(tractions_add_up<damping::None, contact::MohrCoulomb>({}, dry)[1] == 0);
-  CHECK(tractions_add_up<damping::MassProportional, contact::MohrCoulomb>(damping::MassProportional::from_damping_ratio(0.05, 5), dry)[1] == 0);
-  CHECK(tractions_add_up<damping::StiffnessProportional, contact::MohrCoulomb>(damping::StiffnessProportional::from_damping_ratio(0.05, 20), dry)[1] > 10);
-  CHECK(tractions_add_up<damping::Rayleigh, contact::MohrCoulomb>(damping::Rayleigh::from_two_frequencies(0.03, 1, 0.03, 40), dry)[1] > 10);
-  const auto field = tractions_add_up<damping::Maxwell<3>, contact::MohrCoulomb>(maxwell, dry);
-  CHECK(field[0] > 5);  // also after the field was released
-  CHECK(field[1] > 10);
   CHECK(tractions_add_up<damping::Maxwell<3>, contact::MohrCoulomb>(per_cp, dry)[1] > 10);
   CHECK(tractions_add_up<damping::Maxwell<3>, contact::ElastoSoftening>(maxwell, contact::ElastoSoftening::Parameters::from_material())[1] > 10);
 }
@@ -574,7 +647,7 @@ bool all_finite(const model::RigidBodies& b, std::size_t i) {
 
 TEST_CASE("density scaling: a rigid-only model switched to the mixed step by scaling steps on, its state finite") {
   // Regression: scale_density_to() set up the deformable state of a rigid-only model without its gather lists, and
-  // the first step read past them (DeformableState::gather_rigid).
+  // the first step read past them (gather_rigid, integrate/node_pass.hpp).
   auto s = test::block_on_base(0.2, 0.2, 0.2);
   ElasticSettle sim(s.model, damping::Local{}, stiff_joint);
   REQUIRE_FALSE(sim.mixed());

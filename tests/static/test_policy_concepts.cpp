@@ -2,17 +2,13 @@
 
 #include <doctest/doctest.h>
 
+#include <tuple>
+#include <type_traits>
+
 #include "blockdem/contact/concepts.hpp"
-#include "blockdem/contact/elastic.hpp"
-#include "blockdem/contact/mohr_coulomb.hpp"
-#include "blockdem/contact/softening.hpp"
+#include "blockdem/contact/laws.hpp"
 #include "blockdem/damping/concepts.hpp"
-#include "blockdem/damping/local.hpp"
-#include "blockdem/damping/mass_proportional.hpp"
-#include "blockdem/damping/maxwell.hpp"
-#include "blockdem/damping/none.hpp"
-#include "blockdem/damping/rayleigh.hpp"
-#include "blockdem/damping/stiffness_proportional.hpp"
+#include "blockdem/damping/policies.hpp"
 
 namespace {
 struct NotALaw {
@@ -28,18 +24,11 @@ struct NoVelocityUpdate {
 }  // namespace
 
 using namespace blockdem;
-static_assert(contact::ContactLaw<contact::Elastic>);
-static_assert(contact::ContactLaw<contact::MohrCoulomb>);
-static_assert(contact::ContactLaw<contact::ElastoSoftening>);
+static_assert([]<class... L>(std::tuple<L...>*) { return (contact::ContactLaw<L> && ...); }(static_cast<contact::ShippedLaws*>(nullptr)));
 static_assert(!contact::ContactLaw<NotALaw>);
 static_assert(!contact::ContactLaw<int>);
-static_assert(damping::DampingPolicy<damping::None>);
-static_assert(damping::DampingPolicy<damping::Local>);
-static_assert(damping::DampingPolicy<damping::MassProportional>);
-static_assert(damping::DampingPolicy<damping::StiffnessProportional>);
-static_assert(damping::DampingPolicy<damping::Rayleigh>);
-static_assert(damping::DampingPolicy<damping::Maxwell<1>>);
-static_assert(damping::DampingPolicy<damping::Maxwell<3>>);
+static_assert([]<class... D>(std::tuple<D...>*) { return (damping::DampingPolicy<D> && ...); }(static_cast<damping::ShippedPolicies*>(nullptr)));
+static_assert(damping::DampingPolicy<damping::Maxwell<1>>);  // the list has Maxwell<3>: the extremes of N
 static_assert(damping::DampingPolicy<damping::Maxwell<8>>);
 static_assert(!damping::DampingPolicy<NoVelocityUpdate>);
 static_assert(!damping::DampingPolicy<double>);

@@ -3,6 +3,8 @@
 
 #include <array>
 #include <concepts>
+#include <cstddef>
+#include <type_traits>
 
 namespace blockdem::contact {
 
@@ -31,6 +33,27 @@ struct Response {
 /// joint that broke (contact points found at the first detection are bonded, failed = 0; a broken one has 1).
 inline constexpr unsigned char never_bonded = 2;
 
+/// The turn of a contact point's tangent directions from an old contact frame (t1o, t2o) to a new one (t1, t2) in the
+/// same plane, when a redetection gives the contact another frame: m[i][j] = t_i . t_jo (t_1 = t1, t_2 = t2), so
+/// that an in-plane vector's components along the new tangents are new_i = sum_j m[i][j] old_j. A pure turn (both
+/// frames orthonormal) keeps the vector's length. The default is no turn.
+struct ShearTurn {
+  double m[2][2] = {{1, 0}, {0, 1}};
+
+  /// Re-expresses the pair (s1, s2), components along t1o, t2o, along t1, t2.
+  constexpr void apply(double& s1, double& s2) const noexcept {
+    const double new_1 = m[0][0] * s1 + m[0][1] * s2;
+    const double new_2 = m[1][0] * s1 + m[1][1] * s2;
+    s1 = new_1;
+    s2 = new_2;
+  }
+  /// The same for N pairs (s1[i], s2[i]) at once, e.g. one per Maxwell branch.
+  template <std::size_t N>
+  constexpr void apply(std::array<double, N>& s1, std::array<double, N>& s2) const noexcept {
+    for (std::size_t i = 0; i < N; ++i) apply(s1[i], s2[i]);
+  }
+};
+
 /// A joint law: `Parameters` (validated on construction: throws InvalidArgument naming the field and range),
 /// `History` (per contact point; `gap` in m, positive open), and static functions
 /// - `update(params, history, du_normal, du_shear) -> Response`: du_normal is the increment of the gap (m),
@@ -42,9 +65,25 @@ inline constexpr unsigned char never_bonded = 2;
 ///   never acts across an open joint (the damping policy releases its stresses);
 /// - `stored_energy(params, history)`: elastic energy per area in the joint springs, J/m^2;
 /// - `traction(params, history) -> Traction`: the stresses the history holds, those the last update returned (to
-///   rounding). The contact pass stores no traction per CP: output asks the history (ContactGroup::traction_at).
+///   rounding). The contact pass stores no traction per CP: output asks the history (ContactGroup::traction_at);
+/// and its traits, which the engine uses instead of reading the history's members:
+/// - `turn_shear(history, turn)`: re-expresses the history's shear stresses (Pa), and any other vector state it keeps
+///   in the contact plane, along the tangents of a new contact frame (ShearTurn), when a redetection carries the
+///   history over to a contact whose frame turned;
+/// - `damage(history) -> double`: the damage for output, in [0, 1] (0 intact, 1 failed); for a contact point that was
+///   never bonded (below) output marks that instead;
+/// - `start_unbonded(history)`: the state of a contact point that appears during the run where there was no contact
+///   (an impact after separation, a new pair after sliding): it never was part of a bonded joint, so it starts from
+///   the law's failed state (no tension, residual cohesion), and a joint that broke and separated does not heal when
+///   it closes again; a law without a bond leaves the history as it is;
+/// - `never_bonded(history) -> bool`: the point started so (start_unbonded) and the law kept it: output and damage
+///   counts tell it from a joint that broke;
+/// - `dissipates`, a constant: whether update() can return a non-zero `dissipated`; the contact pass books no slip
+///   dissipation for a law that never dissipates (no memory traffic).
+/// Every function is static and noexcept (update runs in the hot loop, the others in redetection and output).
 template <class L>
-concept ContactLaw = requires(const typename L::Parameters& p, typename L::History& h, double du, Shear ds) {
+concept ContactLaw = requires(const typename L::Parameters& p, typename L::History& h, const typename L::History& held,
+                              double du, Shear ds, const ShearTurn& turn) {
   { L::update(p, h, du, ds) } noexcept -> std::same_as<Response>;
   { L::normal_stiffness(p) } noexcept -> std::convertible_to<double>;
   { L::shear_stiffness(p) } noexcept -> std::convertible_to<double>;
@@ -52,6 +91,12 @@ concept ContactLaw = requires(const typename L::Parameters& p, typename L::Histo
   { L::stored_energy(p, h) } noexcept -> std::convertible_to<double>;
   { L::traction(p, h) } noexcept -> std::same_as<Traction>;
   { h.gap } -> std::convertible_to<double>;
+  { L::turn_shear(h, turn) } noexcept -> std::same_as<void>;
+  { L::damage(held) } noexcept -> std::same_as<double>;
+  { L::start_unbonded(h) } noexcept -> std::same_as<void>;
+  { L::never_bonded(held) } noexcept -> std::same_as<bool>;
+  requires std::same_as<decltype(L::dissipates), const bool>;
+  typename std::bool_constant<L::dissipates>;  // a constant expression
 };
 
 }  // namespace blockdem::contact

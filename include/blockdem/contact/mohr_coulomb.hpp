@@ -91,7 +91,7 @@ struct MohrCoulomb {
     h.shear = tau;
     // Both flags stored together, at the end: damping_active, right after the step, reads them as one word, which
     // a lone byte store just before would stall (store forwarding).
-    h.failed = failed ? (h.failed == never_bonded ? never_bonded : 1) : 0;
+    h.failed = failed ? (h.failed == contact::never_bonded ? contact::never_bonded : 1) : 0;
     h.slipping = slipping ? 1 : 0;
     return {sigma, tau, dissipated, !failed && !slipping && (h.gap <= 0 || p.tensile_strength > 0)};  // damping_active
   }
@@ -108,6 +108,13 @@ struct MohrCoulomb {
   static constexpr Traction traction(const Parameters&, const History& h) noexcept {
     return {h.normal, h.shear[0], h.shear[1]};
   }
+
+  // Traits (ContactLaw). Damage is all or nothing: 1 once the bond broke (or never was, contact::never_bonded).
+  static constexpr void turn_shear(History& h, const ShearTurn& turn) noexcept { turn.apply(h.shear[0], h.shear[1]); }
+  static constexpr double damage(const History& h) noexcept { return h.failed ? 1.0 : 0.0; }
+  static constexpr void start_unbonded(History& h) noexcept { h.failed = contact::never_bonded; }
+  static constexpr bool never_bonded(const History& h) noexcept { return h.failed == contact::never_bonded; }
+  static constexpr bool dissipates = true;  // slip
 };
 
 static_assert(ContactLaw<MohrCoulomb>);

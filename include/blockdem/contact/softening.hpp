@@ -359,7 +359,7 @@ struct ElastoSoftening {
     }
 
     if (intact < intact0) h.damage = std::max(h.damage, std::min(1.0, 1.0 - intact));
-    if (h.failed != never_bonded) h.failed = h.damage >= failure_damage;
+    if (h.failed != contact::never_bonded) h.failed = h.damage >= failure_damage;
     h.inelastic = inelastic;
     return {sigma, tau, dissipated, damping_active(p, h)};
   }
@@ -383,6 +383,16 @@ struct ElastoSoftening {
     return 0.5 * p.normal_stiffness * secant * h.gap * h.gap +
            0.5 * (h.shear[0] * h.shear[0] + h.shear[1] * h.shear[1]) / p.shear_stiffness;
   }
+
+  // Traits (ContactLaw). A never-bonded point starts fully damaged: residual strengths, no tension.
+  static constexpr void turn_shear(History& h, const ShearTurn& turn) noexcept { turn.apply(h.shear[0], h.shear[1]); }
+  static constexpr double damage(const History& h) noexcept { return h.damage; }
+  static constexpr void start_unbonded(History& h) noexcept {
+    h.failed = contact::never_bonded;
+    h.damage = 1.0;
+  }
+  static constexpr bool never_bonded(const History& h) noexcept { return h.failed == contact::never_bonded; }
+  static constexpr bool dissipates = true;  // cracking, crushing, slip
 
   // ---- the current state, for output and tests ----
 

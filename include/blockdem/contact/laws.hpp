@@ -1,0 +1,20 @@
+#pragma once
+// The one list of the joint laws blockdem ships, which tests and benchmarks iterate.
+
+#include <tuple>
+
+#include "blockdem/contact/elastic.hpp"
+#include "blockdem/contact/mohr_coulomb.hpp"
+#include "blockdem/contact/softening.hpp"
+
+namespace blockdem::contact {
+
+/// Every shipped joint law. Tests of the ContactLaw contract (tests/contact/test_law_concepts.cpp,
+/// test_traction.cpp) and the wall benchmarks run each law of this list, so that none is forgotten. A new law: one
+/// header, one test file and one line here (then each test or benchmark that needs per-law parameters names what
+/// it wants for it, or fails to compile).
+using ShippedLaws = std::tuple<Elastic, MohrCoulomb, ElastoSoftening>;
+
+static_assert([]<class... L>(std::tuple<L...>*) { return (ContactLaw<L> && ...); }(static_cast<ShippedLaws*>(nullptr)));
+
+}  // namespace blockdem::contact

@@ -1,0 +1,202 @@
+// The ContactLaw concept and the traits it requires of every law (contact/concepts.hpp): every shipped law models
+// it, a law that lacks one trait or whose update may throw does not; and per law the traits do what the engine
+// relies on: turn_shear turns the shear stresses with the frame, start_unbonded / never_bonded / damage agree, and
+// `dissipates` says whether update() ever dissipates.
+
+#include <doctest/doctest.h>
+
+#include "../approx.hpp"
+#include "../shipped.hpp"
+
+#include <cmath>
+#include <type_traits>
+
+#include "blockdem/contact/concepts.hpp"
+#include "blockdem/contact/laws.hpp"
+#include "blockdem/core/units.hpp"
+
+using namespace blockdem;
+
+namespace {
+
+// ---- compile time: positive and negative ----
+
+/// Which trait a copy of Elastic lacks (or, for noexcept_update, which promise it breaks).
+enum class Without { nothing, turn_shear, damage, start_unbonded, never_bonded, dissipates, constant_dissipates, noexcept_update };
+
+struct Dissipates {
+  static constexpr bool dissipates = false;
+};
+struct NoDissipates {};
+struct VariableDissipates {
+  static inline bool dissipates = false;  // not a constant: the contact pass could not decide at compile time
+};
+template <Without without>
+using DissipatesBase = std::conditional_t<without == Without::dissipates, NoDissipates,
+                                          std::conditional_t<without == Without::constant_dissipates, VariableDissipates, Dissipates>>;
+
+/// contact::Elastic, copied member by member, without one trait.
+template <Without without>
+struct ElasticCopy : DissipatesBase<without> {
+  using Law = contact::Elastic;
+  using Parameters = Law::Parameters;
+  using History = Law::History;
+  static constexpr contact::Response update(const Parameters& p, History& h, double du_normal,
+                                            contact::Shear du_shear) noexcept(without != Without::noexcept_update) {
+    return Law::update(p, h, du_normal, du_shear);
+  }
+  static constexpr double normal_stiffness(const Parameters& p) noexcept { return Law::normal_stiffness(p); }
+  static constexpr double shear_stiffness(const Parameters& p) noexcept { return Law::shear_stiffness(p); }
+  static constexpr bool damping_active(const Parameters& p, const History& h) noexcept { return Law::damping_active(p, h); }
+  static constexpr double stored_energy(const Parameters& p, const History& h) noexcept { return Law::stored_energy(p, h); }
+  static constexpr contact::Traction traction(const Parameters& p, const History& h) noexcept { return Law::traction(p, h); }
+  static constexpr void turn_shear(History& h, const contact::ShearTurn& turn) noexcept
+    requires(without != Without::turn_shear)
+  {
+    Law::turn_shear(h, turn);
+  }
+  static constexpr double damage(const History& h) noexcept
+    requires(without != Without::damage)
+  {
+    return Law::damage(h);
+  }
+  static constexpr void start_unbonded(History& h) noexcept
+    requires(without != Without::start_unbonded)
+  {
+    Law::start_unbonded(h);
+  }
+  static constexpr bool never_bonded(const History& h) noexcept
+    requires(without != Without::never_bonded)
+  {
+    return Law::never_bonded(h);
+  }
+};
+
+/// A law with every trait whose damage() may throw.
+struct ThrowingDamage : ElasticCopy<Without::damage> {
+  static double damage(const History&) { return 0.0; }
+};
+
+static_assert([]<class... L>(std::tuple<L...>*) { return (contact::ContactLaw<L> && ...); }(static_cast<contact::ShippedLaws*>(nullptr)));
+static_assert(std::tuple_size_v<contact::ShippedLaws> == 3);
+static_assert(contact::ContactLaw<ElasticCopy<Without::nothing>>);  // the copy itself is a law: what follows removes one thing
+static_assert(!contact::ContactLaw<ElasticCopy<Without::turn_shear>>);
+static_assert(!contact::ContactLaw<ElasticCopy<Without::damage>>);
+static_assert(!contact::ContactLaw<ElasticCopy<Without::start_unbonded>>);
+static_assert(!contact::ContactLaw<ElasticCopy<Without::never_bonded>>);
+static_assert(!contact::ContactLaw<ElasticCopy<Without::dissipates>>);
+static_assert(!contact::ContactLaw<ElasticCopy<Without::constant_dissipates>>);
+static_assert(!contact::ContactLaw<ElasticCopy<Without::noexcept_update>>);
+static_assert(!contact::ContactLaw<ThrowingDamage>);
+
+// The traits are constant expressions where the law allows.
+static_assert(!contact::Elastic::dissipates && contact::MohrCoulomb::dissipates && contact::ElastoSoftening::dissipates);
+static_assert([] {
+  contact::MohrCoulomb::History h{};
+  contact::MohrCoulomb::start_unbonded(h);
+  return contact::MohrCoulomb::never_bonded(h) && contact::MohrCoulomb::damage(h) == 1.0;
+}());
+static_assert([] {
+  contact::ElastoSoftening::History h{};
+  contact::ElastoSoftening::start_unbonded(h);
+  return contact::ElastoSoftening::never_bonded(h) && contact::ElastoSoftening::damage(h) == 1.0;
+}());
+static_assert([] {
+  contact::ShearTurn quarter{{{0, 1}, {-1, 0}}};
+  double s1 = 1, s2 = 0;
+  quarter.apply(s1, s2);
+  return s1 == 0 && s2 == -1;
+}());
+
+// ---- run time, per shipped law ----
+
+/// A bonded joint of each law: strengths that a millimetre of opening breaks.
+template <class Law>
+typename Law::Parameters bonded() {
+  if constexpr (std::is_same_v<Law, contact::Elastic>) return {1e10, 4e9};
+  else if constexpr (std::is_same_v<Law, contact::MohrCoulomb>) return {1e10, 4e9, 1e5, 2e5, 0.6};
+  else if constexpr (std::is_same_v<Law, contact::ElastoSoftening>) return contact::ElastoSoftening::Parameters::from_material();
+  else static_assert(test::unlisted<Law>, "a new law: give it a bonded joint here");
+}
+
+/// Whether the law has a bond to lose (and so a failed state that a never-bonded contact point starts from).
+template <class Law>
+constexpr bool has_bond() {
+  if constexpr (std::is_same_v<Law, contact::Elastic>) return false;
+  else if constexpr (std::is_same_v<Law, contact::MohrCoulomb> || std::is_same_v<Law, contact::ElastoSoftening>) return true;
+  else static_assert(test::unlisted<Law>, "a new law: say whether it has a bond");
+}
+
+/// A closed joint (1e-6 m of closure) carrying the shear stress (tau_1, tau_2) (Pa), well inside its strength.
+template <class Law>
+typename Law::History loaded(const typename Law::Parameters& p, double tau_1, double tau_2) {
+  typename Law::History h{};
+  const double ks = Law::shear_stiffness(p);
+  Law::update(p, h, -1e-6, {-tau_1 / ks, -tau_2 / ks});
+  return h;
+}
+
+}  // namespace
+
+TEST_CASE_TEMPLATE_DEFINE("contact law traits: turn_shear re-expresses the shear stresses along the turned tangents", Law, turn_shear_case) {
+  // Reference: a turn by 90 degrees about n (t1 = t2o, t2 = n x t1 = -t1o) takes a stress along t1o to minus the new
+  // t2; a turn by theta keeps the stress vector: new_1 = cos s1 + sin s2, new_2 = -sin s1 + cos s2.
+  const auto p = bonded<Law>();
+  auto h = loaded<Law>(p, 1.0, 0.0);
+  const contact::Traction before = Law::traction(p, h);
+  CHECK(before[1] == test::approx(1.0).epsilon(1e-12));
+  CHECK(before[2] == 0.0);
+  Law::turn_shear(h, contact::ShearTurn{{{0, 1}, {-1, 0}}});
+  const contact::Traction quarter = Law::traction(p, h);
+  CHECK(quarter[0] == before[0]);  // the normal stress does not turn
+  CHECK(quarter[1] == 0.0);
+  CHECK(quarter[2] == -before[1]);
+
+  const double theta = 30.0 * pi / 180.0, c = std::cos(theta), s = std::sin(theta);
+  auto g = loaded<Law>(p, 300.0, -400.0);
+  const contact::Traction old = Law::traction(p, g);
+  Law::turn_shear(g, contact::ShearTurn{{{c, s}, {-s, c}}});
+  const contact::Traction turned = Law::traction(p, g);
+  CHECK(turned[1] == test::approx(c * old[1] + s * old[2]).epsilon(1e-14));
+  CHECK(turned[2] == test::approx(-s * old[1] + c * old[2]).epsilon(1e-14));
+  CHECK(std::hypot(turned[1], turned[2]) == test::approx(500.0).epsilon(1e-12));
+  auto unturned = g;
+  Law::turn_shear(unturned, contact::ShearTurn{});  // the default is no turn
+  CHECK(Law::traction(p, unturned) == turned);
+}
+TEST_CASE_TEMPLATE_APPLY(turn_shear_case, contact::ShippedLaws);
+
+TEST_CASE_TEMPLATE_DEFINE("contact law traits: start_unbonded, never_bonded and damage agree, and the law keeps the mark", Law, unbonded_case) {
+  const auto p = bonded<Law>();
+  const typename Law::History fresh{};
+  CHECK_FALSE(Law::never_bonded(fresh));
+  CHECK(Law::damage(fresh) == 0.0);
+
+  // A contact point that appeared during the run: failed from the start (damage 1) where the law has a bond.
+  typename Law::History h{};
+  Law::start_unbonded(h);
+  CHECK(Law::never_bonded(h) == has_bond<Law>());
+  CHECK(Law::damage(h) == (has_bond<Law>() ? 1.0 : 0.0));
+  for (int i = 0; i < 100; ++i) Law::update(p, h, i < 50 ? -1e-8 : 2e-8, {1e-7, -1e-7});  // closes, slides, opens
+  CHECK(Law::never_bonded(h) == has_bond<Law>());
+  CHECK(Law::damage(h) == (has_bond<Law>() ? 1.0 : 0.0));
+
+  // A bonded joint torn open by a millimetre: broken (damage 1 to within the law's failure damage), not never-bonded.
+  typename Law::History torn{};
+  for (int i = 0; i < 1000; ++i) Law::update(p, torn, 1e-6, {0.0, 0.0});
+  CHECK_FALSE(Law::never_bonded(torn));
+  if (has_bond<Law>()) CHECK(Law::damage(torn) > 0.999);
+  else CHECK(Law::damage(torn) == 0.0);
+  CHECK(Law::damage(torn) <= 1.0);
+}
+TEST_CASE_TEMPLATE_APPLY(unbonded_case, contact::ShippedLaws);
+
+TEST_CASE_TEMPLATE_DEFINE("contact law traits: a law dissipates along a millimetre of slip exactly when it says it does", Law, dissipates_case) {
+  const auto p = bonded<Law>();
+  typename Law::History h{};
+  double dissipated = 0.0;
+  Law::update(p, h, -1e-6, {0.0, 0.0});  // closed: 1e4 Pa and more of compression
+  for (int i = 0; i < 1000; ++i) dissipated += Law::update(p, h, 0.0, {1e-6, 0.0}).dissipated;
+  CHECK((dissipated > 0.0) == Law::dissipates);
+}
+TEST_CASE_TEMPLATE_APPLY(dissipates_case, contact::ShippedLaws);
