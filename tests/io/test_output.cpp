@@ -17,7 +17,7 @@
 #include "blockdem/integrate/run.hpp"
 #include "blockdem/integrate/simulation.hpp"
 #include "blockdem/io/history.hpp"
-#include "blockdem/io/report.hpp"
+#include "blockdem/integrate/run_report.hpp"
 #include "blockdem/io/vtk.hpp"
 
 using namespace blockdem;

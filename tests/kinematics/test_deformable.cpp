@@ -26,8 +26,8 @@ using namespace blockdem;
 static_assert(kinematics::Kinematics<kinematics::Rigid>);
 static_assert(kinematics::Kinematics<kinematics::Deformable>);
 static_assert(!kinematics::Kinematics<double>);
-static_assert(kinematics::DeformableState<damping::Maxwell<3>, contact::Elastic>::tensor_form);
-static_assert(!kinematics::DeformableState<damping::MassProportional, contact::Elastic>::tensor_form);
+static_assert(DeformableState<damping::Maxwell<3>, contact::Elastic>::tensor_form);
+static_assert(!DeformableState<damping::MassProportional, contact::Elastic>::tensor_form);
 
 TEST_CASE("deformable mesh: a box meshed with a maximum edge, conforming, volume exact") {
   const auto box = geometry::make_box(Vec3(0, 0, 0), Vec3(1.0, 0.5, 0.3));
@@ -384,7 +384,7 @@ TEST_CASE("deformable threads: one and two threads give bitwise identical result
 
 TEST_CASE("deformable threads: Maxwell<3> element tiles over several chunks give bitwise identical results and energy") {
   // More elements than the parallel threshold and than two viscous chunks, and a last, partial tile.
-  using State = kinematics::DeformableState<damping::Maxwell<3>, contact::MohrCoulomb>;
+  using State = DeformableState<damping::Maxwell<3>, contact::MohrCoulomb>;
   std::size_t tetrahedra = 0;
   auto run = [&] {
     model::Model m;

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "blockdem/contact/mohr_coulomb.hpp"
@@ -252,21 +253,20 @@ template <class Simulation>
 DamageCensus damage_census(const Simulation& sim, const model::Model& model) {
   DamageCensus census;
   std::vector<char> touched(model.bodies.size(), 0);
-  sim.visit_contact_histories([&](std::size_t a, std::size_t b, const auto& h) {
+  sim.visit_contact_histories([&]<class Law>(std::size_t a, std::size_t b, std::type_identity<Law>, const auto& h) {
     touched[a] = touched[b] = 1;
-    bool cracked = false, crushed = false, slipped = false, appeared = false;
+    bool cracked = false, crushed = false, slipped = false;
     double damage = 0;
-    if constexpr (requires { h.failed; }) appeared = h.failed == contact::never_bonded;
+    const bool appeared = Law::never_bonded(h);
+    if (!appeared) damage = Law::damage(h);  // a contact made during the run: its failed start is no damage
+    // How the masonry is damaged, by the laws that say it: elasto-softening (cracked, crushed), Mohr-Coulomb (slip).
     if (appeared) {
-      // a contact made during the run: its failed start is no crack, crush or slip of the masonry
-    } else if constexpr (requires { h.tension_secant; }) {  // elasto-softening
+    } else if constexpr (requires { h.tension_secant; }) {
       cracked = h.tension_secant < 1;
       crushed = h.compression_secant < 1;
-      damage = h.damage;
       slipped = damage > 0 && !cracked && !crushed;
-    } else if constexpr (requires { h.slipping; }) {  // Mohr-Coulomb
+    } else if constexpr (requires { h.slipping; }) {
       slipped = h.failed || h.slipping;
-      damage = h.failed ? 1.0 : 0.0;
     }
     const bool damaged = cracked || crushed || slipped || damage > 0;
     auto count = [&](DamageCensus::Counts& c) {

@@ -1,6 +1,7 @@
 #pragma once
 // Four doubles in one vector register, for the fused contact loop, which runs the kinematics of four contacts at a
-// time (Simulation::contact_pass_of), and for the Maxwell fields of four contacts (damping::Maxwell::FieldLanes).
+// time (contact_pass_of, integrate/contact_pass.hpp), and for the Maxwell fields of four contacts
+// (damping::Maxwell::FieldLanes).
 // A GCC/Clang vector extension: one AVX register with -mavx (-march=native), two SSE2 halves otherwise.
 //
 // The vector is wrapped in a struct: without AVX, GCC and Clang warn that a function taking or returning a bare

@@ -1,6 +1,6 @@
 #pragma once
 // A 3-vector of four contacts at once, one per lane (each component a Lanes), for the per-contact kinematics of
-// the fused contact loop (Simulation::contact_pass_of).
+// the fused contact loop (contact_pass_of, integrate/contact_pass.hpp).
 //
 // Plain components rather than Eigen: Eigen evaluates Vector3d expressions with a 2-wide packet for the first two
 // components and a scalar for the third; in a loop body with more live values than registers, such temporaries

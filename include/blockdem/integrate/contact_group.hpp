@@ -34,7 +34,7 @@ void add_contact_point_energy(const Damping& damping, const typename Law::Parame
                               const std::array<typename Damping::ContactState, 3>& spring, double area, double slip,
                               double viscous, double& elastic_total, double& slip_total, double& viscous_total) {
   double stored = Law::stored_energy(p, h);
-  if constexpr (requires { damping.stored_energy(spring[0], 1.0); }) {
+  if constexpr (damping::SpringEnergyDamping<Damping>) {
     const double branches = damping.stored_energy(spring[0], Law::normal_stiffness(p)) +
                             damping.stored_energy(spring[1], Law::shear_stiffness(p)) +
                             damping.stored_energy(spring[2], Law::shear_stiffness(p));
@@ -84,7 +84,7 @@ struct ContactFieldOf {
   static constexpr bool present = false;
 };
 template <class Damping>
-  requires requires { typename Damping::ContactField; }
+  requires damping::ContactFieldDamping<Damping>
 struct ContactFieldOf<Damping> {
   using type = typename Damping::ContactField;
   using sum = typename Damping::Generalised;
@@ -95,6 +95,7 @@ struct ContactFieldOf<Damping> {
 
 template <contact::ContactLaw Law, damping::DampingPolicy Damping>
 struct ContactGroup {
+  using LawType = Law;
   using Parameters = typename Law::Parameters;
   using History = typename Law::History;
   using SpringState = std::array<typename Damping::ContactState, 3>;  // normal, shear 1, shear 2

@@ -20,6 +20,7 @@
 #include "blockdem/core/rotation.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/geometry/convex_polyhedron.hpp"
+#include "blockdem/geometry/polygon.hpp"
 #include "blockdem/model/model.hpp"
 
 namespace blockdem::model {
@@ -54,73 +55,13 @@ struct ContactCandidate {
 
 namespace detail {
 
-using Point2 = std::array<double, 2>;
-using Polygon2 = std::vector<Point2>;
+using geometry::Point2;
+using geometry::Polygon2;
+using geometry::cross2;
+using geometry::clip_convex;
+using geometry::polygon_centroid;
 
-inline double cross2(const Point2& o, const Point2& a, const Point2& b) {
-  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
-}
-
-inline double polygon_area(const Polygon2& p) {
-  double s = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const auto& u = p[i];
-    const auto& v = p[(i + 1) % p.size()];
-    s += u[0] * v[1] - v[0] * u[1];
-  }
-  return 0.5 * s;
-}
-
-inline Point2 polygon_centroid(const Polygon2& p) {
-  Point2 c{0, 0};
-  for (const auto& v : p) {
-    c[0] += v[0];
-    c[1] += v[1];
-  }
-  return {c[0] / static_cast<double>(p.size()), c[1] / static_cast<double>(p.size())};
-}
-
-/// Sutherland-Hodgman: the part of `subject` inside the convex counter-clockwise polygon `clip`.
-inline Polygon2 clip_convex(Polygon2 subject, const Polygon2& clip) {
-  for (std::size_t e = 0; e < clip.size() && !subject.empty(); ++e) {
-    const Point2& c0 = clip[e];
-    const Point2& c1 = clip[(e + 1) % clip.size()];
-    Polygon2 input = std::move(subject);
-    subject.clear();
-    for (std::size_t i = 0; i < input.size(); ++i) {
-      const Point2& p = input[i];
-      const Point2& q = input[(i + 1) % input.size()];
-      const double dp = cross2(c0, c1, p);
-      const double dq = cross2(c0, c1, q);
-      if (dp >= 0) subject.push_back(p);
-      if ((dp >= 0) != (dq >= 0)) {
-        const double t = dp / (dp - dq);
-        subject.push_back({p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])});
-      }
-    }
-  }
-  // Drop the repeated and collinear points that clipping along (nearly) common edges leaves behind.
-  double scale = 0;
-  for (const auto& v : clip) scale = std::max({scale, std::abs(v[0] - clip[0][0]), std::abs(v[1] - clip[0][1])});
-  const double eps = 1e-9 * scale;
-  bool changed = true;
-  while (changed && subject.size() >= 3) {
-    changed = false;
-    for (std::size_t i = 0; i < subject.size() && subject.size() >= 3; ++i) {
-      const Point2& prev = subject[(i + subject.size() - 1) % subject.size()];
-      const Point2& v = subject[i];
-      const Point2& next = subject[(i + 1) % subject.size()];
-      const bool repeated = std::hypot(v[0] - prev[0], v[1] - prev[1]) <= eps;
-      const bool collinear = std::abs(cross2(prev, v, next)) <= eps * scale;
-      if (repeated || collinear) {
-        subject.erase(subject.begin() + static_cast<std::ptrdiff_t>(i));
-        changed = true;
-        break;
-      }
-    }
-  }
-  return subject;
-}
+inline double polygon_area(const Polygon2& p) { return geometry::polygon_area(p); }
 
 /// Contact points of an overlap polygon with their tributary areas: each cell (the polygon itself, or its
 /// intersection with the squares of a grid of side h) is fanned from its centroid, and each fan triangle gives

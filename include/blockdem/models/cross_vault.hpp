@@ -35,6 +35,7 @@
 #include "blockdem/geometry/clip.hpp"
 #include "blockdem/geometry/convex_polyhedron.hpp"
 #include "blockdem/geometry/mass_properties.hpp"
+#include "blockdem/geometry/polygon.hpp"
 #include "blockdem/geometry/queries.hpp"
 #include "blockdem/model/contact_detection.hpp"
 #include "blockdem/model/model.hpp"
@@ -416,15 +417,8 @@ inline void faceted_ring(const CrossVaultOptions& o, const ArchProfile& profile,
   }
 }
 
-inline double polygon_area(const std::vector<Vec2>& p) {
-  double s = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const Vec2& a = p[i];
-    const Vec2& b = p[(i + 1) % p.size()];
-    s += a.x() * b.y() - b.x() * a.y();
-  }
-  return 0.5 * std::abs(s);
-}
+/// The area of a section polygon (m^2, unsigned).
+inline double polygon_area(const std::vector<Vec2>& p) { return std::abs(geometry::polygon_area(p)); }
 
 inline double volume(const geometry::ConvexPolyhedron& p) {
   if (p.vertices.empty()) return 0;

@@ -1,0 +1,419 @@
+#pragma once
+// The integrator's state of the deformable blocks, the trusses and the node contacts (DESIGN.md §4, paper Sect.
+// 3.1-3.2): node contact groups (rigid face side and deformable face side, one per law and kind), element damping
+// states and forces, truss forces, node energies and inverse masses, the real masses of density-scaled rigid blocks,
+// and the gather lists through which every node and block sums its own contributions in a fixed order (no atomics:
+// results do not depend on the number of threads). The passes over it are in integrate/element_pass.hpp and
+// integrate/node_pass.hpp, its contact assignment in integrate/node_contact_assignment.hpp.
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "blockdem/contact/concepts.hpp"
+#include "blockdem/core/types.hpp"
+#include "blockdem/damping/concepts.hpp"
+#include "blockdem/integrate/contact_group.hpp"
+#include "blockdem/io/checkpoint.hpp"
+#include "blockdem/kinematics/concepts.hpp"
+#include "blockdem/kinematics/node_contact_group.hpp"
+#include "blockdem/model/model.hpp"
+
+namespace blockdem {
+
+/// Energy terms of the deformable part (J), added to the simulation's report.
+struct DeformableEnergy {
+  double kinetic = 0, elastic = 0, gravity_work = 0, viscous = 0, slip = 0;
+};
+
+template <damping::DampingPolicy Damping, contact::ContactLaw... Laws>
+class DeformableState {
+ public:
+  template <contact::ContactLaw L>
+  using RigidFaceGroup = kinematics::NodeContactGroup<L, Damping, kinematics::Rigid>;
+  template <contact::ContactLaw L>
+  using DeformableFaceGroup = kinematics::NodeContactGroup<L, Damping, kinematics::Deformable>;
+  using Groups = std::tuple<RigidFaceGroup<Laws>..., DeformableFaceGroup<Laws>...>;
+  /// Elements per tile of the tensor form: fixed, so that which elements share a vector does not depend on the
+  /// number of threads. With 32, a tile's branch stresses (4.6 kB for Maxwell<3>), its increment buffers and the
+  /// gradients it reads twice fit the L1 cache together. 64 was slower (22.7 against 19.9 ms per step on the
+  /// benchmark wall with Maxwell<3>); 16 was not distinguishable from 32.
+  static constexpr std::size_t element_tile = 32;
+  /// Policies with a tensor form for whole elements (Maxwell<N>: element_stress_tile) keep their own element state,
+  /// per tile of element_tile elements; the others act on the seven strain components (volumetric, 3 deviatoric
+  /// normal, 3 shear), per element.
+  static constexpr bool tensor_form = damping::ElementTileDamping<Damping, element_tile>;
+  using ElementState = typename decltype([] {
+    if constexpr (tensor_form) return std::type_identity<typename Damping::template ElementTile<element_tile>>{};
+    else return std::type_identity<std::array<typename Damping::ContactState, 7>>{};
+  }())::type;
+
+  Groups groups;
+  std::vector<ElementState> element_state;  // per tile (tensor form) or per element
+  std::vector<std::array<Vec3, 4>> element_force;  // N, on the element's nodes
+  /// Elements per partial sum of element_viscous: a fixed number, so that the sums (and the energy report) do not
+  /// depend on the number of threads. A per-element array cost 16 bytes read and written per element-step.
+  static constexpr std::size_t viscous_chunk = 2048;
+  static_assert(viscous_chunk % element_tile == 0, "a chunk of the viscous work is made of whole tiles");
+  std::vector<double> element_viscous;              // J, work on the element dashpots / branches, per viscous_chunk
+  std::vector<Vec3> truss_force;                    // N, on end 0 (end 1 gets the opposite)
+  std::vector<double> node_inverse_mass;            // 1/kg
+  std::vector<double> node_kinetic, node_gravity_work, node_viscous;
+  std::vector<Vec3> extra_force, extra_moment;      // N, N m, on rigid blocks: node contacts, trusses, weight correction
+  std::vector<double> rigid_real_mass;              // kg, before density scaling
+  std::vector<Vec3> rigid_real_inertia;             // kg m^2, idem
+  double extra_work = 0;                            // J, work of the weight correction of scaled rigid blocks
+  double retired_slip = 0, retired_viscous = 0;
+  std::vector<Vec3> detected_node_position;
+
+  template <class F>
+  void for_each_group(F&& f) {
+    std::apply([&](auto&... g) { (f(g), ...); }, groups);
+  }
+  template <class F>
+  void for_each_group(F&& f) const {
+    std::apply([&](const auto&... g) { (f(g), ...); }, groups);
+  }
+
+  /// Sizes the arrays and builds the gather lists: the static ones (elements and trusses to nodes) and those of the
+  /// node contacts and rigid truss ends (for the groups as they are: empty before the first assign()), so that the
+  /// state can step right after setup, also when no assign() follows (a rigid-only model switched to the mixed step
+  /// by density scaling).
+  void setup(const model::Model& m) {
+    const auto& nd = m.deformable.nodes;
+    const auto& te = m.deformable.tetrahedra;
+    element_state.assign(tensor_form ? (te.size() + element_tile - 1) / element_tile : te.size(), ElementState{});
+    element_force.assign(te.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
+    element_viscous.assign((te.size() + viscous_chunk - 1) / viscous_chunk, 0.0);
+    material_moduli.assign(m.deformable.materials.size(), {0.0, 0.0});
+    truss_force.assign(m.deformable.trusses.size(), Vec3::Zero());
+    node_inverse_mass.resize(nd.size());
+    for (std::size_t i = 0; i < nd.size(); ++i) node_inverse_mass[i] = 1.0 / nd.mass[i];
+    node_kinetic.assign(nd.size(), 0.0);
+    for (std::size_t i = 0; i < nd.size(); ++i) node_kinetic[i] = 0.5 * nd.mass[i] * nd.velocity[i].squaredNorm();
+    node_gravity_work.assign(nd.size(), 0.0);
+    node_viscous.assign(nd.size(), 0.0);
+    extra_force.assign(m.bodies.size(), Vec3::Zero());
+    extra_moment.assign(m.bodies.size(), Vec3::Zero());
+    if (rigid_real_mass.size() != m.bodies.size()) {  // kept over a second setup: the blocks may be scaled by then
+      rigid_real_mass = m.bodies.mass;
+      rigid_real_inertia = m.bodies.principal_inertia;
+    }
+    // Element entries of each node: 4 t + k, in increasing order.
+    element_first.assign(nd.size() + 1, 0);
+    for (const auto& e : te.node)
+      for (auto n : e) ++element_first[n + 1];
+    for (std::size_t i = 0; i < nd.size(); ++i) element_first[i + 1] += element_first[i];
+    element_entry.assign(element_first.back(), 0);
+    std::vector<std::uint32_t> next(element_first.begin(), element_first.end() - 1);
+    for (std::size_t t = 0; t < te.size(); ++t)
+      for (std::uint32_t k = 0; k < 4; ++k) element_entry[next[te.node[t][k]]++] = static_cast<std::uint32_t>(4 * t + k);
+    truss_first.assign(nd.size() + 1, 0);
+    const auto& trusses = m.deformable.trusses;
+    for (const auto& t : trusses)
+      for (const auto& e : t.end)
+        if (e.node >= 0) ++truss_first[static_cast<std::size_t>(e.node) + 1];
+    for (std::size_t i = 0; i < nd.size(); ++i) truss_first[i + 1] += truss_first[i];
+    truss_entry.assign(truss_first.back(), 0);
+    next.assign(truss_first.begin(), truss_first.end() - 1);
+    for (std::size_t t = 0; t < trusses.size(); ++t)
+      for (std::uint32_t s = 0; s < 2; ++s)
+        if (trusses[t].end[s].node >= 0) truss_entry[next[static_cast<std::size_t>(trusses[t].end[s].node)]++] = static_cast<std::uint32_t>(2 * t + s);
+    detected_node_position = nd.position;
+    build_contact_lists(m);
+  }
+
+  /// The branch stresses of element t (tensor form), gathered from its tile: Damping::ElementState, Pa.
+  auto element_branch_stress(std::size_t t) const requires tensor_form {
+    typename Damping::ElementState s{};
+    const auto& tile = element_state[t / element_tile];
+    for (std::size_t i = 0; i < s.size(); ++i)
+      for (std::size_t c = 0; c < 6; ++c) s[i][c] = tile.stress[c][i][t % element_tile];
+    return s;
+  }
+
+  /// Copies the contact histories (not the damping state) and the real rigid masses from the state of another
+  /// damping policy. The inverse node masses come from the model's present masses (setup), not from `other`.
+  template <class Other>
+  void take_over(const Other& other, const model::Model& m) {
+    rigid_real_mass = other.rigid_real_mass;
+    rigid_real_inertia = other.rigid_real_inertia;
+    setup(m);
+    copy_groups(other.groups, std::make_index_sequence<2 * sizeof...(Laws)>{});
+    node_kinetic = other.node_kinetic;
+    build_contact_lists(m);
+  }
+
+  // ---- timestep and energy ----
+
+  /// Adds the stiffness (N/m) of the node contacts, elements and trusses: to each node (k_node), and to the rigid
+  /// blocks (translation, and rotation k r^2).
+  void add_stiffness(const model::Model& m, std::vector<double>& k_node, std::vector<double>& k_translation,
+                     std::vector<double>& k_rotation) const {
+    const auto& te = m.deformable.tetrahedra;
+    k_node.assign(m.deformable.nodes.size(), 0.0);
+    for (std::size_t t = 0; t < te.size(); ++t)
+      for (auto n : te.node[t]) k_node[n] += te.stiffness[t];  // eq. 2
+    for_each_group([&](const auto& g) {
+      using G = std::remove_cvref_t<decltype(g)>;
+      using L = typename G::LawType;
+      for (std::size_t k = 0; k < g.size(); ++k) {
+        const auto& p = g.properties[g.property[k]];
+        const double s = std::max(L::normal_stiffness(p), L::shear_stiffness(p)) * g.area[k];
+        k_node[g.node[k]] += s;
+        if constexpr (G::FaceKinematics::deformable) {
+          for (auto n : g.triangle[k]) k_node[n] += s;
+        } else {
+          const std::size_t b = g.face_block[k];
+          k_translation[b] += s;
+          k_rotation[b] += s * rotate(m.bodies.rotation[b], g.point_local[k]).squaredNorm();
+        }
+      }
+    });
+    for (const auto& tr : m.deformable.trusses) {
+      const double s = tr.axial_stiffness();
+      for (const auto& e : tr.end) {
+        if (e.node >= 0) {
+          k_node[static_cast<std::size_t>(e.node)] += s;
+        } else {
+          k_translation[e.block] += s;
+          k_rotation[e.block] += s * e.body_point.squaredNorm();
+        }
+      }
+    }
+  }
+
+  /// Adds the elements and the node contacts to an upper bound on omega_max (the trusses are the caller's).
+  template <class Bound>
+  void add_to(const model::Model& m, Bound& bound) const {
+    const auto& te = m.deformable.tetrahedra;
+    const auto& materials = m.deformable.materials;
+    for (std::size_t t = 0; t < te.size(); ++t) {
+      const auto& mat = materials[te.material[t]];
+      bound.tetrahedron(te.node[t], te.gradient[t], te.volume[t], mat.bulk(), mat.shear());
+    }
+    const auto& x = m.deformable.nodes.position;
+    for_each_group([&](const auto& g) {
+      using G = std::remove_cvref_t<decltype(g)>;
+      using L = typename G::LawType;
+      for (std::size_t k = 0; k < g.size(); ++k) {
+        const auto& p = g.properties[g.property[k]];
+        const double kn = L::normal_stiffness(p), ks = L::shear_stiffness(p);
+        Vec3 n;
+        if constexpr (G::FaceKinematics::deformable) {
+          const auto& tri = g.triangle[k];
+          n = (x[tri[1]] - x[tri[0]]).cross(x[tri[2]] - x[tri[0]]).normalized();
+        } else {
+          n = rotate(m.bodies.rotation[g.face_block[k]], g.normal_local[k]);
+        }
+        const Mat3 nn = n * n.transpose();
+        const Mat3 d = g.area[k] * (kn * nn + ks * (Mat3::Identity() - nn));
+        const auto node = Bound::node_point(g.node[k]);
+        if constexpr (G::FaceKinematics::deformable) {
+          const auto& tri = g.triangle[k];
+          const auto& w = g.weight[k];
+          bound.spring({node}, {Bound::node_point(tri[0], w[0]), Bound::node_point(tri[1], w[1]), Bound::node_point(tri[2], w[2])}, d);
+        } else {
+          const std::size_t fb = g.face_block[k];
+          bound.spring({node}, {Bound::block_point(fb, m.bodies.position[fb] + rotate(m.bodies.rotation[fb], g.point_local[k]))}, d);
+        }
+      }
+    });
+  }
+
+  DeformableEnergy energy(const model::Model& m, const Damping& damping) const {
+    DeformableEnergy e;
+    e.slip = retired_slip;
+    e.viscous = retired_viscous;
+    for (std::size_t i = 0; i < node_kinetic.size(); ++i) {
+      e.kinetic += node_kinetic[i];
+      e.gravity_work += node_gravity_work[i];
+      e.viscous += node_viscous[i];
+    }
+    e.gravity_work += extra_work;
+    for (double w : element_viscous) e.viscous += w;
+    const auto& te = m.deformable.tetrahedra;
+    for (std::size_t t = 0; t < te.size(); ++t) {
+      const auto& s = te.stress[t];
+      const auto& mat = m.deformable.materials[te.material[t]];
+      const double bulk = mat.bulk(), shear = mat.shear();
+      const double p = (s[0] + s[1] + s[2]) / 3.0;
+      const double dev = (s[0] - p) * (s[0] - p) + (s[1] - p) * (s[1] - p) + (s[2] - p) * (s[2] - p) +
+                         2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+      e.elastic += te.volume[t] * (0.5 * p * p / bulk + 0.25 * dev / shear);
+      if constexpr (tensor_form) {
+        const double branches = damping.element_stored_energy(element_branch_stress(t), bulk, shear);
+        e.elastic += te.volume[t] * branches;
+        e.viscous -= te.volume[t] * branches;
+      } else if constexpr (damping::SpringEnergyDamping<Damping>) {
+        const auto& st = element_state[t];
+        double branches = damping.stored_energy(st[0], bulk);
+        for (std::size_t c = 1; c < 4; ++c) branches += damping.stored_energy(st[c], 2.0 * shear);
+        for (std::size_t c = 4; c < 7; ++c) branches += damping.stored_energy(st[c], shear);
+        e.elastic += te.volume[t] * branches;
+        e.viscous -= te.volume[t] * branches;
+      }
+    }
+    for_each_group([&](const auto& g) {
+      using L = typename std::remove_cvref_t<decltype(g)>::LawType;
+      for (std::size_t k = 0; k < g.size(); ++k)
+        add_contact_point_energy<L>(damping, g.properties[g.property[k]], g.history[k], g.spring_state[k], g.area[k],
+                                    g.slip_dissipation[k], g.viscous_dissipation[k], e.elastic, e.slip, e.viscous);
+    });
+    for (std::size_t t = 0; t < m.deformable.trusses.size(); ++t) {
+      const auto& tr = m.deformable.trusses[t];
+      const double stretch = (m.end_position(tr.end[1]) - m.end_position(tr.end[0])).norm() - tr.length0;
+      e.elastic += tr.pretension * stretch + 0.5 * tr.axial_stiffness() * stretch * stretch;
+    }
+    return e;
+  }
+
+  std::size_t contact_points() const {
+    std::size_t n = 0;
+    for_each_group([&](const auto& g) { n += g.size(); });
+    return n;
+  }
+
+  /// Every array, for checkpoints (io/checkpoint.hpp), the gather lists too (those of the elements and trusses
+  /// could be rebuilt from the model, those of the node contacts from the groups: loaded, nothing has to be).
+  /// Not saved: material_moduli, a cache that every element pass fills before use.
+  void save_state(io::CheckpointWriter& out) const { visit_state(*this, out); }
+  void load_state(io::CheckpointReader& in) { visit_state(*this, in); }
+
+  template <class Self, class Archive>
+  static void visit_state(Self& d, Archive& ar) {
+    std::apply([&](auto&... g) { (ar("node contact group", g), ...); }, d.groups);
+    ar("element damping states", d.element_state);
+    ar("element forces", d.element_force);
+    ar("element viscous work", d.element_viscous);
+    ar("truss forces", d.truss_force);
+    ar("node inverse masses", d.node_inverse_mass);
+    ar("node kinetic energies", d.node_kinetic);
+    ar("node gravity work", d.node_gravity_work);
+    ar("node viscous work", d.node_viscous);
+    ar("forces on rigid blocks", d.extra_force);
+    ar("moments on rigid blocks", d.extra_moment);
+    ar("real rigid block masses", d.rigid_real_mass);
+    ar("real rigid block inertias", d.rigid_real_inertia);
+    ar("weight correction work", d.extra_work);
+    ar("retired node contact slip", d.retired_slip);
+    ar("retired node contact viscous work", d.retired_viscous);
+    ar("node positions at the last detection", d.detected_node_position);
+    ar("node contact gather list heads", d.node_first);
+    ar("node contact gather list entries", d.node_entry);
+    ar("node contact gather list coefficients", d.node_coefficient);
+    ar("rigid block node contact gather list heads", d.rigid_first);
+    ar("rigid block node contact gather list entries", d.rigid_entry);
+    ar("element gather list heads", d.element_first);
+    ar("element gather list entries", d.element_entry);
+    ar("truss gather list heads", d.truss_first);
+    ar("truss gather list entries", d.truss_entry);
+    ar("rigid block truss gather list heads", d.rigid_truss_first);
+    ar("rigid block truss gather list entries", d.rigid_truss_entry);
+  }
+
+  // Gather lists, per group: node entries (CP index, coefficient -1 for the node side, +w for a face triangle's
+  // node) and rigid-block entries (CP index).
+  static constexpr std::size_t group_count = 2 * sizeof...(Laws);
+  std::array<std::vector<std::uint32_t>, group_count> node_first, node_entry, rigid_first, rigid_entry;
+  std::array<std::vector<double>, group_count> node_coefficient;
+  std::vector<std::array<double, 2>> material_moduli;  // Pa, bulk K and shear G per material (material_moduli_of)
+  std::vector<std::uint32_t> element_first, element_entry, truss_first, truss_entry, rigid_truss_first, rigid_truss_entry;
+
+  template <class OtherGroups, std::size_t... I>
+  void copy_groups(const OtherGroups& other, std::index_sequence<I...>) {
+    (copy_group(std::get<I>(other), std::get<I>(groups)), ...);
+  }
+  template <class From, class To>
+  static void copy_group(const From& from, To& to) {
+    to.properties = from.properties;
+    to.node = from.node;
+    to.node_block = from.node_block;
+    to.face_block = from.face_block;
+    to.property = from.property;
+    to.area = from.area;
+    to.point_local = from.point_local;
+    to.normal_local = from.normal_local;
+    to.tangent_local = from.tangent_local;
+    to.triangle = from.triangle;
+    to.weight = from.weight;
+    to.history = from.history;
+    to.spring_state.assign(from.size(), typename To::SpringState{});
+    to.traction = from.traction;
+    to.force = from.force;
+    to.moment = from.moment;
+    to.slip_dissipation.assign(from.size(), 0.0);
+    to.viscous_dissipation.assign(from.size(), 0.0);
+  }
+
+  void build_contact_lists(const model::Model& m) {
+    const std::size_t nodes = m.deformable.nodes.size(), blocks = m.bodies.size();
+    std::size_t group = 0;
+    for_each_group([&](const auto& g) {
+      using G = std::remove_cvref_t<decltype(g)>;
+      // (node, CP, coefficient) triples in increasing CP order per node.
+      std::vector<std::uint32_t> count(nodes + 1, 0);
+      for (std::size_t k = 0; k < g.size(); ++k) {
+        ++count[g.node[k] + 1];
+        if constexpr (G::FaceKinematics::deformable)
+          for (auto n : g.triangle[k]) ++count[n + 1];
+      }
+      for (std::size_t i = 0; i < nodes; ++i) count[i + 1] += count[i];
+      auto& entry = node_entry[group];
+      auto& coefficient = node_coefficient[group];
+      entry.assign(count.back(), 0);
+      coefficient.assign(count.back(), 0.0);
+      std::vector<std::uint32_t> next(count.begin(), count.end() - 1);
+      for (std::size_t k = 0; k < g.size(); ++k) {
+        auto put = [&](std::uint32_t n, double c) {
+          entry[next[n]] = static_cast<std::uint32_t>(k);
+          coefficient[next[n]++] = c;
+        };
+        put(g.node[k], -1.0);
+        if constexpr (G::FaceKinematics::deformable)
+          for (std::size_t j = 0; j < 3; ++j) put(g.triangle[k][j], g.weight[k][j]);
+      }
+      node_first[group] = std::move(count);
+      std::vector<std::uint32_t> rcount(blocks + 1, 0);
+      if constexpr (!G::FaceKinematics::deformable)
+        for (std::size_t k = 0; k < g.size(); ++k) ++rcount[g.face_block[k] + 1];
+      for (std::size_t i = 0; i < blocks; ++i) rcount[i + 1] += rcount[i];
+      rigid_entry[group].assign(rcount.back(), 0);
+      std::vector<std::uint32_t> rnext(rcount.begin(), rcount.end() - 1);
+      if constexpr (!G::FaceKinematics::deformable)
+        for (std::size_t k = 0; k < g.size(); ++k) rigid_entry[group][rnext[g.face_block[k]]++] = static_cast<std::uint32_t>(k);
+      rigid_first[group] = std::move(rcount);
+      ++group;
+    });
+    const auto& trusses = m.deformable.trusses;
+    rigid_truss_first.assign(blocks + 1, 0);
+    for (const auto& t : trusses)
+      for (const auto& e : t.end)
+        if (e.node < 0) ++rigid_truss_first[e.block + 1];
+    for (std::size_t i = 0; i < blocks; ++i) rigid_truss_first[i + 1] += rigid_truss_first[i];
+    rigid_truss_entry.assign(rigid_truss_first.back(), 0);
+    std::vector<std::uint32_t> tnext(rigid_truss_first.begin(), rigid_truss_first.end() - 1);
+    for (std::size_t t = 0; t < trusses.size(); ++t)
+      for (std::uint32_t s = 0; s < 2; ++s)
+        if (trusses[t].end[s].node < 0) rigid_truss_entry[tnext[trusses[t].end[s].block]++] = static_cast<std::uint32_t>(2 * t + s);
+  }
+};
+
+/// Moves the rigid entry of each deformable block with the mean motion of its nodes: the detection runs on the
+/// blocks' rigid entries.
+inline void move_proxies(model::Model& m) {
+  auto& b = m.bodies;
+  const auto& x = m.deformable.nodes.position;
+  for (const auto& blk : m.deformable.blocks) {
+    Vec3 shift = Vec3::Zero();
+    for (std::uint32_t i = blk.first_node; i < blk.end_node; ++i) shift += x[i] - blk.reference_position[i - blk.first_node];
+    b.position[blk.body] = blk.reference_centroid + shift / static_cast<double>(blk.end_node - blk.first_node);
+  }
+}
+
+}  // namespace blockdem
