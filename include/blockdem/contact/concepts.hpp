@@ -6,6 +6,8 @@
 #include <cstddef>
 #include <type_traits>
 
+#include "blockdem/core/types.hpp"
+
 namespace blockdem::contact {
 
 /// Shear components along the contact point's tangent directions t1, t2.
@@ -33,23 +35,24 @@ struct Response {
 /// joint that broke (contact points found at the first detection are bonded, failed = 0; a broken one has 1).
 inline constexpr unsigned char never_bonded = 2;
 
-/// The turn of a contact point's tangent directions from an old contact frame (t1o, t2o) to a new one (t1, t2) in the
-/// same plane, when a redetection gives the contact another frame: m[i][j] = t_i . t_jo (t_1 = t1, t_2 = t2), so
-/// that an in-plane vector's components along the new tangents are new_i = sum_j m[i][j] old_j. A pure turn (both
-/// frames orthonormal) keeps the vector's length. The default is no turn.
+/// The turn of a contact point's tangent directions from an old contact frame (old_t1, old_t2) to a new one (t1, t2)
+/// in the same plane (world frame), when a redetection gives the contact another frame: the in-plane vector
+/// s1 old_t1 + s2 old_t2 gets the components along the new tangents, its dot products with t1 and t2 (through the
+/// vector, so that a turn is computed as the frames give it, to the last bit). A pure turn (both frames orthonormal)
+/// keeps the vector's length. The default is no turn.
 struct ShearTurn {
-  double m[2][2] = {{1, 0}, {0, 1}};
+  Vec3 old_t1 = Vec3::UnitX(), old_t2 = Vec3::UnitY();
+  Vec3 t1 = Vec3::UnitX(), t2 = Vec3::UnitY();
 
-  /// Re-expresses the pair (s1, s2), components along t1o, t2o, along t1, t2.
-  constexpr void apply(double& s1, double& s2) const noexcept {
-    const double new_1 = m[0][0] * s1 + m[0][1] * s2;
-    const double new_2 = m[1][0] * s1 + m[1][1] * s2;
-    s1 = new_1;
-    s2 = new_2;
+  /// Re-expresses the pair (s1, s2), components along old_t1, old_t2, along t1, t2.
+  void apply(double& s1, double& s2) const noexcept {
+    const Vec3 shear = s1 * old_t1 + s2 * old_t2;
+    s1 = shear.dot(t1);
+    s2 = shear.dot(t2);
   }
   /// The same for N pairs (s1[i], s2[i]) at once, e.g. one per Maxwell branch.
   template <std::size_t N>
-  constexpr void apply(std::array<double, N>& s1, std::array<double, N>& s2) const noexcept {
+  void apply(std::array<double, N>& s1, std::array<double, N>& s2) const noexcept {
     for (std::size_t i = 0; i < N; ++i) apply(s1[i], s2[i]);
   }
 };

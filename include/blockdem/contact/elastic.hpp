@@ -47,7 +47,7 @@ struct Elastic {
   }
 
   // Traits (ContactLaw): no bond, hence no damage and nothing to start unbonded; no dissipation.
-  static constexpr void turn_shear(History& h, const ShearTurn& turn) noexcept { turn.apply(h.shear[0], h.shear[1]); }
+  static void turn_shear(History& h, const ShearTurn& turn) noexcept { turn.apply(h.shear[0], h.shear[1]); }
   static constexpr double damage(const History&) noexcept { return 0.0; }
   static constexpr void start_unbonded(History&) noexcept {}
   static constexpr bool never_bonded(const History&) noexcept { return false; }

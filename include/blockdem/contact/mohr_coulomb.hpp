@@ -110,7 +110,7 @@ struct MohrCoulomb {
   }
 
   // Traits (ContactLaw). Damage is all or nothing: 1 once the bond broke (or never was, contact::never_bonded).
-  static constexpr void turn_shear(History& h, const ShearTurn& turn) noexcept { turn.apply(h.shear[0], h.shear[1]); }
+  static void turn_shear(History& h, const ShearTurn& turn) noexcept { turn.apply(h.shear[0], h.shear[1]); }
   static constexpr double damage(const History& h) noexcept { return h.failed ? 1.0 : 0.0; }
   static constexpr void start_unbonded(History& h) noexcept { h.failed = contact::never_bonded; }
   static constexpr bool never_bonded(const History& h) noexcept { return h.failed == contact::never_bonded; }

@@ -385,7 +385,7 @@ struct ElastoSoftening {
   }
 
   // Traits (ContactLaw). A never-bonded point starts fully damaged: residual strengths, no tension.
-  static constexpr void turn_shear(History& h, const ShearTurn& turn) noexcept { turn.apply(h.shear[0], h.shear[1]); }
+  static void turn_shear(History& h, const ShearTurn& turn) noexcept { turn.apply(h.shear[0], h.shear[1]); }
   static constexpr double damage(const History& h) noexcept { return h.damage; }
   static constexpr void start_unbonded(History& h) noexcept {
     h.failed = contact::never_bonded;

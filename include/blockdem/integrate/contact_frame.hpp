@@ -29,15 +29,9 @@ ContactFrame contact_frame(const model::RigidBodies& b, const G& g, std::size_t 
   return fr;
 }
 
-/// The turn from the tangents (old_t1, old_t2) to (t1, t2) of the same plane: component i of a shear along the new
-/// tangents is sum_j (t_i . old_t_j) s_j.
+/// The turn from the tangents (old_t1, old_t2) to (t1, t2) of the same plane.
 inline contact::ShearTurn shear_turn(const Vec3& old_t1, const Vec3& old_t2, const Vec3& t1, const Vec3& t2) {
-  contact::ShearTurn r;
-  r.m[0][0] = t1.dot(old_t1);
-  r.m[0][1] = t1.dot(old_t2);
-  r.m[1][0] = t2.dot(old_t1);
-  r.m[1][1] = t2.dot(old_t2);
-  return r;
+  return {old_t1, old_t2, t1, t2};
 }
 
 /// A shear pair (s1, s2) of a damping state re-expressed along the new tangents: component by component for a
