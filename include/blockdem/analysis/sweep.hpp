@@ -31,24 +31,47 @@ struct SweepScheme {
   std::vector<int> branches;
 };
 
-/// A sweep: every kinematics x record x scheme (with its parameter grid) x level is a case. `levels` (%): with
-/// `incremental`, each case runs all of them one after another on one state (the paper's incremental analysis);
-/// otherwise each level is a case of its own, starting from the undamaged vault (an incremental dynamic analysis,
-/// IDA). Records: file paths; an empty string is the built-in synthetic AQA75 stand-in.
+/// How the levels of a sweep are given: as % of the original record (the paper's 25, 50, 75 %), or as targets of an
+/// intensity measure of the input that each record is scaled to: its peak ground acceleration, or its 5 %-damped
+/// pseudo-spectral acceleration at a period (motion/spectrum.hpp), both in g.
+enum class IntensityMeasure { level, pga, sa };
+inline constexpr const char* name(IntensityMeasure m) {
+  switch (m) {
+    case IntensityMeasure::level: return "level";
+    case IntensityMeasure::pga: return "pga";
+    case IntensityMeasure::sa: return "sa";
+  }
+  return "?";
+}
+
+/// A sweep: every kinematics x record x scheme (with its parameter grid) x level is a case. `levels`: % of the
+/// original record (measure level) or targets in g (pga, sa); with `incremental`, each case runs all of them one
+/// after another on one state (the paper's incremental analysis); otherwise each level is a case of its own,
+/// starting from the undamaged vault (an incremental dynamic analysis, IDA). Records: file paths; an empty string is
+/// the built-in synthetic AQA75 stand-in. `measured`: optional CSV of measured channels (analysis/error_metrics.hpp)
+/// that every case's history of the level `measured_level` (%, as its history file is labelled) is compared with.
 struct SweepSpec {
   std::vector<VaultKinematics> kinematics{VaultKinematics::rigid};
   std::vector<std::string> records{""};
   std::vector<SweepScheme> schemes;
   std::vector<double> levels{25, 50, 75};
+  IntensityMeasure measure = IntensityMeasure::level;
+  double sa_period = 0;  // s, of the spectral acceleration (measure sa)
   bool incremental = true;
+  std::string measured;
+  double measured_level = 0;  // 0: the last level of each case
 };
 
 /// One case of a sweep: its id (stable: from its parameters, not from its position), its position in the expansion,
-/// and the options of its vault study.
+/// and the options of its vault study. With an intensity measure other than level, `intensities` holds the targets
+/// (g) and options.levels is set from them once the record is read (resolve_intensities, analysis/sweep_run.hpp).
 struct SweepCase {
   std::size_t index = 0;
   std::string id;
   VaultStudyOptions options;
+  IntensityMeasure measure = IntensityMeasure::level;
+  double sa_period = 0;
+  std::vector<double> intensities;
 };
 
 namespace detail {
@@ -72,7 +95,8 @@ inline std::string record_tag(const std::string& path) {
 
 /// The cases of `spec`, each from the options `base` with its own values set, in this order (the outermost first):
 /// kinematics, record, scheme (in the order given), zeta, frequency or band, branches, level (not incremental).
-/// Ids read like `rigid_aqa75_maxwell_z0.03_b1-40_n3_L25` (kinematics, record, scheme, its parameters, level; the
+/// Ids read like `rigid_aqa75_maxwell_z0.03_b1-40_n3_L25` (kinematics, record, scheme, its parameters, level: `_L25`
+/// for 25 %, `_pga0.3g` or `_sa0.3g` for a target; incremental cases with targets end in `_pga` or `_sa`; the
 /// parameters a scheme does not use are left out, defaults marked `z-default` and so on). Throws InvalidArgument
 /// naming the field and its range if a list is empty, a value is out of range (VaultStudyOptions::validate on every
 /// case), a scheme is given a list it does not use, or two cases would get the same id.
@@ -83,7 +107,14 @@ inline std::vector<SweepCase> expand_sweep(const SweepSpec& spec, const VaultStu
   check(!spec.kinematics.empty(), "kinematics: give at least one (rigid, mixed, deformable)");
   check(!spec.records.empty(), "records: give at least one (an empty name is the built-in AQA75 stand-in)");
   check(!spec.schemes.empty(), "schemes: give at least one damping scheme (none, mass, stiffness, rayleigh, maxwell)");
-  check(!spec.levels.empty(), "levels: give at least one level in (0, 1000] %");
+  check(!spec.levels.empty(), "levels: give at least one level in (0, 1000] % (or a target in g with pga, sa)");
+  if (spec.measure != IntensityMeasure::level)
+    for (double v : spec.levels)
+      check(v > 0 && v <= 20 && std::isfinite(v), std::string(name(spec.measure)) + ": each target must be in (0, 20] g, got " +
+                                                      detail::id_number(v));
+  check(spec.measure != IntensityMeasure::sa || (spec.sa_period >= 0.01 && spec.sa_period <= 10),
+        "sa_period_s: the period of the spectral acceleration must be in [0.01, 10] s, got " + detail::id_number(spec.sa_period));
+  check(spec.measured_level >= 0 && spec.measured_level <= 1000, "measured_level must be in [0, 1000] % (0: the last level)");
   for (const auto& s : spec.schemes) {
     const std::string scheme = name(s.scheme);
     const bool uses_zeta = s.scheme != DampingScheme::none;
@@ -141,11 +172,20 @@ inline std::vector<SweepCase> expand_sweep(const SweepSpec& spec, const VaultStu
                     if (branches) o.branches = *branches;
                     id += "_n" + std::to_string(o.branches);
                   }
-                  if (level) {
-                    o.levels = {*level};
-                    id += "_L" + detail::id_number(*level);
+                  const std::string level_tag = spec.measure == IntensityMeasure::level ? "_L"
+                                                : spec.measure == IntensityMeasure::pga ? "_pga"
+                                                                                        : "_sa";
+                  const std::string unit = spec.measure == IntensityMeasure::level ? "" : "g";
+                  const std::vector<double> targets = level ? std::vector<double>{*level} : spec.levels;
+                  if (level) id += level_tag + detail::id_number(*level) + unit;
+                  if (spec.measure == IntensityMeasure::level) {
+                    o.levels = targets;
                   } else {
-                    o.levels = spec.levels;
+                    c.measure = spec.measure;
+                    c.sa_period = spec.sa_period;
+                    c.intensities = targets;
+                    o.levels = std::vector<double>(targets.size(), 100.0);  // placeholders until resolved
+                    if (!level) id += level_tag;
                   }
                   try {
                     o.validate();
