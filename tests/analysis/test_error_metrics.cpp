@@ -248,6 +248,7 @@ TEST_CASE("error metrics: compare_tables zeroes the measured displacement, resam
   CHECK(acc.re_max_percent == test::approx(20.0));
   CHECK(acc.re_min_percent == test::approx(20.0));
   CHECK(acc.rmsd_error_percent == test::approx(20.0));
+  CHECK(acc.peak_bias_percent == test::approx(20.0));  // Table 3's signed peak bias: 1.2 times the measured peak
   CHECK(acc.rmsd_num == test::approx(1.2 * acc.rmsd_exp));
   const std::vector<double> acc_window(measured.values[2].begin(), measured.values[2].begin() + 81);
   const auto [acc_lo, acc_hi] = std::minmax_element(acc_window.begin(), acc_window.end());
@@ -258,6 +259,7 @@ TEST_CASE("error metrics: compare_tables zeroes the measured displacement, resam
   CHECK(u.nrmse_percent < 1e-9);
   CHECK(u.rmsd_error_percent < 1e-9);
   CHECK(u.peaks.absolute_peak_percent < 1e-9);
+  CHECK(std::abs(u.peak_bias_percent) < 1e-9);
   CHECK(u.re_max_percent < 1e-9);
 
   // Without the zeroing, the offset is the whole error: NRMSE = 100 offset / range.

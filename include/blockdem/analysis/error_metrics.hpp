@@ -334,6 +334,7 @@ struct ChannelComparison {
   PeakErrors peaks;
   double re_max_percent = 0;  // eq. 30
   double re_min_percent = 0;  // eq. 30
+  double peak_bias_percent = 0;  // 100 (max|u_num| / max|u_exp| - 1): the signed peak bias of Table 3
   std::size_t samples = 0;    // measured samples in the overlap of the two time spans
 };
 
@@ -385,6 +386,7 @@ inline std::vector<ChannelComparison> compare_tables(const Table& simulated, con
     r.peaks = detail::peak_errors_or_nan(n, e);
     r.re_max_percent = detail::absolute_percent(n.max, e.max);  // eq. 30
     r.re_min_percent = detail::absolute_percent(n.min, e.min);  // eq. 30
+    r.peak_bias_percent = detail::signed_percent(std::max(std::abs(n.max), std::abs(n.min)), std::max(std::abs(e.max), std::abs(e.min)));
     result.push_back(std::move(r));
   }
   if (result.empty()) {

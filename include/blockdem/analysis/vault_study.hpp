@@ -121,6 +121,7 @@ void settle(Settle& sim, double dt, const VaultStudyOptions& o, SettlingResult& 
   for (long long n = 0; n < o.settle_max_steps; ++n) {
     sim.step();
     ++out.steps;
+    if ((n & 1023) == 1023 && o.poll) o.poll();
     if (n % 10 != 9) continue;
     out.unbalanced_ratio = sim.unbalanced_force_ratio();
     if (out.unbalanced_ratio <= o.settle_tolerance) {
@@ -140,6 +141,26 @@ void settle(Settle& sim, double dt, const VaultStudyOptions& o, SettlingResult& 
   if (o.progress)
     std::fprintf(stderr, "\rsettling: %lld steps, unbalanced force ratio %.2e, %.1f s%s\n", out.steps, out.unbalanced_ratio,
                  out.wall_seconds, out.converged ? "" : " (NOT converged)");
+}
+
+/// Throws RunawayError if a monitor point's last sample is not finite or farther than o.runaway_displacement from
+/// where it settled (relative to the table).
+template <class History>
+void check_runaway(const History& history, const VaultStudyOptions& o, const std::string& level, double t_in_level) {
+  for (std::size_t p = 0; p < history.points(); ++p) {
+    const double d = history.last_displacement(p).norm();
+    if (std::isfinite(d) && d <= o.runaway_displacement) continue;
+    const auto names = history.names();
+    char text[320];
+    if (!std::isfinite(d))
+      std::snprintf(text, sizeof text, "level %s %%: the run diverged %.4f s into the level (the displacement of %s is not finite)",
+                    level.c_str(), t_in_level, names[p].c_str());
+    else
+      std::snprintf(text, sizeof text, "level %s %%: %s moved %.3g m from where it settled, %.4f s into the level, beyond "
+                    "--runaway-displacement %.3g m: the run diverged or the block fell off the slab", level.c_str(), names[p].c_str(), d,
+                    t_in_level, o.runaway_displacement);
+    throw RunawayError(text);
+  }
 }
 
 }  // namespace detail
@@ -436,6 +457,7 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
         if (sim.time() >= cursor.next_sample - 0.5 * sim.timestep()) {
           history.sample(model, sim.time());
           cursor.next_sample += o.history_dt;
+          detail::check_runaway(history, o, label, sim.time() - cursor.level_start);
         }
         if (o.snapshots_every > 0 && !o.out_dir.empty() && sim.time() >= cursor.next_snapshot - 0.5 * sim.timestep()) {
           snapshots.write(label, sim.time(), model, vault, settled_position);
@@ -457,6 +479,7 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
         record();
         ++cursor.level_steps;
         ++cursor.dynamic_steps;
+        if ((cursor.level_steps & 1023) == 0 && o.poll) o.poll();
         if ((cursor.level_steps & 1023) == 0 && o.checkpoint_minutes > 0 &&
             clock::now() - last_checkpoint > std::chrono::duration<double>(60 * o.checkpoint_minutes)) {
           cursor.level_wall_seconds = wall_before + std::chrono::duration<double>(clock::now() - run_start).count();

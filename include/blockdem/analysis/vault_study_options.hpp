@@ -4,6 +4,7 @@
 // program option (--levels, ...) and the allowed range.
 
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -90,6 +91,12 @@ struct VaultStudyOptions {
   double history_dt = 0.005;               // s
   double snapshots_every = 0;              // s; 0: no time series of the blocks
   bool progress = true;                    // a progress line on stderr
+  std::function<void()> poll;              // if set, called about every 1024 steps of settling and of the dynamic
+                                           // run (an MPI task farm's lead rank answers its workers there)
+
+  // A run whose state is not finite, or whose monitor point moves farther than this from where it settled
+  // (relative to the table), stops with RunawayError: it diverged, or the block fell off the slab.
+  double runaway_displacement = 10;        // m
 
   // Long runs: out_dir/checkpoint.bin is written at the end of each level, every checkpoint_minutes of wall time
   // and when the run stops early (Ctrl-C, stop_after_steps); resume continues from one, bitwise as the run would
@@ -139,6 +146,8 @@ struct VaultStudyOptions {
           "--checkpoint-minutes must be in [0, 1e6] (0: at the end of each level only), got " + num(checkpoint_minutes));
     check(stop_after_steps >= 0, "--stop-after-steps must be >= 0 (0: never), got " + std::to_string(stop_after_steps));
     check(resume.empty() || !out_dir.empty(), "--resume needs the output folder of the run it continues (--out)");
+    check(runaway_displacement >= 0.001 && runaway_displacement <= 1e6,
+          "--runaway-displacement must be in [0.001, 1e6] m, got " + num(runaway_displacement));
     check(snapshots_every >= 0 && snapshots_every <= 100, "--snapshots-every must be in [0, 100] s, got " + num(snapshots_every));
   }
 };

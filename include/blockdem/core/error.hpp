@@ -20,6 +20,14 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Thrown when a run leaves every physical bound (a state that is not finite, a monitor point farther from where
+/// it settled than any collapse could take it): the run diverged, or a block fell off the model. The message names
+/// the time, the point and the bound.
+class RunawayError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 }  // namespace blockdem
 
 // Checks that hold by construction inside the hot loops: compiled out unless BLOCKDEM_ENABLE_ASSERTS is defined
