@@ -3,10 +3,14 @@
 //   cross_vault run [--out DIR] [--record FILE] [--levels 25,50,75] [--damping none|mass|stiffness|rayleigh|maxwell] [...]
 //       settles the vault under gravity and shakes it at each level in turn (the incremental analysis of Sect. 5),
 //       writing histories, damage maps, report.json and the Table 4 of the run into DIR;
+//   cross_vault sweep SWEEP.json [--out DIR] [--case K] [--list] [--summarize] [the options of run]
+//       runs every case of a sweep (damping schemes and their grids x records x levels or intensity targets x
+//       kinematics) into DIR/cases/<id>/ and sums them up in DIR/summary.csv; under `mpirun -np N` when built with MPI;
 //   cross_vault --geometry-only [--vtk vault.vtu] [--contacts-vtk cps.vtu] [--json] [--profile segmental|elliptical] [...]
 //       builds and checks the blocks of every component (validity, overlaps, contacts, masses) and writes them out.
 //
-// Exit status: 0 on success, 1 if the assembly check fails or a run is interrupted, 2 on bad input.
+// Exit status: 0 on success, 1 if the assembly check fails, a run is interrupted or diverges, or a case of a sweep
+// fails, 2 on bad input.
 
 #include <chrono>
 #include <cstdio>
@@ -87,6 +91,9 @@ struct RunCommand {
     app.add_option("--max-mass-increase", o.max_mass_increase_percent, "refuse a --target-dt that adds more mass than this, %")->capture_default_str();
     app.add_option("--settle-tolerance", o.settle_tolerance, "unbalanced-force ratio that ends settling")->capture_default_str();
     app.add_option("--settle-steps", o.settle_max_steps, "most steps of settling")->capture_default_str();
+    app.add_option("--runaway-displacement", o.runaway_displacement,
+                   "stop with an error when a monitor point moves farther than this from where it settled, m [0.001, 1e6]")
+        ->capture_default_str();
     app.add_option("--history-dt", o.history_dt, "sampling interval of the histories, s")->capture_default_str();
     app.add_option("--snapshots-every", o.snapshots_every, "write the blocks every DT s of simulated time (snapshots.pvd for ParaView; 0: none)")
         ->capture_default_str();
@@ -234,6 +241,8 @@ int run_study(RunCommand& command) {
 
 }  // namespace
 
+#include "vault_sweep.hpp"
+
 int main(int argc, char** argv) {
   using namespace blockdem;
   using models::Component;
@@ -247,6 +256,11 @@ int main(int argc, char** argv) {
   auto* run_app = app.add_subcommand("run", "settle the vault and shake it at each level in turn (the incremental analysis of Sect. 5)");
   run.add_to(*run_app);
   run_app->fallthrough();  // the geometry options may follow `run`
+  SweepCommand sweep;
+  auto* sweep_app = app.add_subcommand("sweep", "many analyses from a sweep file: damping grids, records, levels or intensity "
+                                                "targets (Sect. 5, Table 3; IDA), on MPI ranks when built with MPI");
+  sweep.add_to(*sweep_app);
+  sweep_app->fallthrough();
   CompareCommand compare;
   auto* compare_app = app.add_subcommand("compare", "error metrics of Sect. 5 (eq. 26-30) of a run against measured channels");
   compare.add_to(*compare_app);
@@ -275,19 +289,24 @@ int main(int argc, char** argv) {
   app.add_option("--max-cp-area", contacts.max_contact_point_area, "largest area per contact point, m^2 (0: CPs at the corners)")
       ->capture_default_str();
   if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
-  if (compare_app->parsed() || run_app->parsed()) {
-    const char* command = compare_app->parsed() ? "compare" : "run";
+  if (compare_app->parsed() || run_app->parsed() || sweep_app->parsed()) {
+    const char* command = compare_app->parsed() ? "compare" : run_app->parsed() ? "run" : "sweep";
     run.study.vault = o;
+    sweep.base.study.vault = o;
     auto bad_input = [&](const std::exception& e) {
       std::fprintf(stderr, "cross_vault %s: error: %s\n", command, e.what());
       return programs::exit_bad_input;
     };
     try {
+      if (sweep_app->parsed()) return run_sweep_command(sweep, argc, argv);
       return compare_app->parsed() ? compare.run() : run_study(run);
     } catch (const InvalidArgument& e) {
       return bad_input(e);
     } catch (const InputError& e) {  // a malformed record or table
       return bad_input(e);
+    } catch (const RunawayError& e) {
+      std::fprintf(stderr, "cross_vault %s: %s\n", command, e.what());
+      return 1;
     }
   }
   if (!geometry_only) {

@@ -1,17 +1,19 @@
 #!/usr/bin/env bash
 # Installs, from Debian packages, what blockdem needs to build, test, run its examples and benchmarks: only what is
 # missing, non-interactively. Idempotent: a second run installs nothing.
-#   scripts/install-deps.sh            compiler, CMake, Ninja, Eigen, Boost, doctest, CLI11, fmt, Google Benchmark
+#   scripts/install-deps.sh            compiler, CMake, Ninja, Eigen, Boost, doctest, CLI11, fmt, Google Benchmark,
+#                                      OpenMPI (for `cross_vault sweep` on MPI ranks)
 #   scripts/install-deps.sh --plots    also Python with numpy and matplotlib for the plotting scripts
 #   scripts/install-deps.sh --minpack  also scipy, for benchmarks/minpack_reference.py
 set -euo pipefail
 
-packages=(g++ cmake ninja-build libeigen3-dev libboost-dev doctest-dev libcli11-dev libfmt-dev libbenchmark-dev)
+packages=(g++ cmake ninja-build libeigen3-dev libboost-dev doctest-dev libcli11-dev libfmt-dev libbenchmark-dev
+          libopenmpi-dev openmpi-bin)
 for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(python3 python3-numpy python3-matplotlib) ;;
     --minpack) packages+=(python3 python3-numpy python3-scipy) ;;
-    -h|--help) sed -n '2,7p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,8p' "$0"; exit 0 ;;
     *) echo "install-deps.sh: unknown option '$arg' (allowed: --plots, --minpack)" >&2; exit 2 ;;
   esac
 done

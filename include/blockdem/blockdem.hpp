@@ -35,6 +35,7 @@
 #include "blockdem/io/columns.hpp"
 #include "blockdem/io/history.hpp"
 #include "blockdem/io/json.hpp"
+#include "blockdem/io/json_reader.hpp"
 #include "blockdem/integrate/run_report.hpp"
 #include "blockdem/io/vtk.hpp"
 #include "blockdem/kinematics/concepts.hpp"
@@ -58,4 +59,5 @@
 #include "blockdem/motion/truncation.hpp"
 #include "blockdem/motion/wavelet_truncation.hpp"
 #include "blockdem/motion/writers.hpp"
+#include "blockdem/parallel/task_farm.hpp"
 #include "blockdem/solve/levenberg_marquardt.hpp"

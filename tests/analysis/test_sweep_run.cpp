@@ -1,0 +1,191 @@
+// Running a sweep (analysis/sweep_run.hpp) on the coarse vault (bricks 0.2 x 0.7 m) over 0.1 s of the record: a case
+// run by the sweep writes what the vault study writes by itself, bit for bit; a case that fails (a missing record,
+// a run that leaves every bound) is recorded and the others complete; a second run skips the finished cases without
+// touching their files and retries the failed one; intensity targets scale the record to the asked PGA.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "blockdem/analysis/sweep_run.hpp"
+#include "../threads.hpp"
+
+using namespace blockdem;
+using namespace blockdem::analysis;
+
+namespace {
+
+VaultStudyOptions short_coarse_study() {
+  VaultStudyOptions o;
+  o.vault.unit_height = 0.2;
+  o.vault.unit_length = 0.7;
+  o.progress = false;
+  o.rest = 0;
+  o.window_start = 2.0;
+  o.window_end = 2.1;
+  return o;
+}
+
+std::string contents(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+/// summary.csv without its last column, the wall time.
+std::string without_wall_times(const std::string& csv) {
+  std::string out, line;
+  std::istringstream in(csv);
+  while (std::getline(in, line)) out += line.substr(0, line.rfind(',')) + '\n';
+  return out;
+}
+
+std::filesystem::path fresh_folder(const char* name) {
+  const auto dir = std::filesystem::temp_directory_path() / name;
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+}  // namespace
+
+TEST_CASE("sweep run: cases that fail are recorded, the others complete; a second run skips the finished ones") {
+  const test::OneThread one_thread;
+  const auto dir = fresh_folder("blockdem_sweep_run");
+  SweepSpec spec;
+  spec.records = {"", "/nonexistent/record.AT2"};
+  spec.schemes = {SweepScheme{DampingScheme::none, {}, {}, {}, {}}, SweepScheme{DampingScheme::mass, {0.04}, {7.5}, {}, {}}};
+  spec.levels = {25};
+  const auto cases = expand_sweep(spec, short_coarse_study());
+  REQUIRE(cases.size() == 4);
+  SweepRunOptions run;
+  run.out_dir = dir.string();
+  run.fingerprint = "test";
+  run.progress = false;
+  parallel::SerialFarm farm;
+  int seen = 0;
+  const auto rows = run_sweep(cases, run, farm, [&](const CaseRow&, int rank) {
+    CHECK(rank == 0);
+    ++seen;
+  });
+  CHECK(seen == 4);
+  REQUIRE(rows.size() == 4);
+  CHECK(rows[0].status == CaseStatus::done);
+  CHECK(rows[1].status == CaseStatus::done);
+  CHECK(rows[2].status == CaseStatus::failed);
+  CHECK(rows[3].status == CaseStatus::failed);
+  CHECK(rows[2].message.find("/nonexistent/record.AT2") != std::string::npos);
+  CHECK(rows[2].csv.find("failed") != std::string::npos);
+  for (const auto& r : rows) CHECK_FALSE(r.skipped);
+
+  // The summary: a header and a row per case, in case order; a finished case has its peaks, a failed one none.
+  const std::string summary = contents(dir / "summary.csv");
+  CHECK(summary.rfind(std::string(summary_header) + "\n", 0) == 0);
+  CHECK(std::count(summary.begin(), summary.end(), '\n') == 5);
+  CHECK(summary.find("\n0,rigid_aqa75_none,done,,rigid,aqa75,none,") != std::string::npos);
+  CHECK(summary.find("\n3,rigid_record_mass_z0.04_f7.5,failed,") != std::string::npos);
+  CHECK(contents(dir / "summary.json").find("\"failed\": 2") != std::string::npos);
+
+  // The sweep's case is the vault study run by itself, byte for byte.
+  auto alone = cases[1].options;
+  alone.out_dir = (dir / "alone").string();
+  run_vault_study(alone);
+  const auto history = contents(dir / "cases" / cases[1].id / "history_25.csv");
+  CHECK(history.size() > 1000);
+  CHECK(history == contents(dir / "alone" / "history_25.csv"));
+
+  // Again: the finished cases are skipped and their files left as they were; the failed ones run again.
+  const auto written = std::filesystem::last_write_time(dir / "cases" / cases[0].id / "history_25.csv");
+  const auto again = run_sweep(cases, run, farm, [](const CaseRow&, int) {});
+  REQUIRE(again.size() == 4);
+  CHECK(again[0].skipped);
+  CHECK(again[1].skipped);
+  CHECK_FALSE(again[2].skipped);
+  CHECK(again[2].status == CaseStatus::failed);
+  CHECK(again[0].csv == rows[0].csv);
+  CHECK(std::filesystem::last_write_time(dir / "cases" / cases[0].id / "history_25.csv") == written);
+  CHECK(without_wall_times(contents(dir / "summary.csv")) == without_wall_times(summary));  // the failed ones took their time again
+
+  // Under other base options (another fingerprint) nothing is taken as finished.
+  run.fingerprint = "other";
+  CHECK(recorded_row(cases[0], run).status == CaseStatus::pending);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("sweep run: a run that leaves every bound fails with its level, time and point, and does not stop the sweep") {
+  const test::OneThread one_thread;
+  const auto dir = fresh_folder("blockdem_sweep_runaway");
+  SweepSpec spec;
+  spec.schemes = {SweepScheme{DampingScheme::none, {}, {}, {}, {}}};
+  spec.levels = {75, 1000};
+  spec.incremental = false;
+  auto base = short_coarse_study();
+  base.runaway_displacement = 0.001;  // 1 mm: the 1000 % level moves the crown farther than that within 0.1 s
+  const auto cases = expand_sweep(spec, base);
+  SweepRunOptions run;
+  run.out_dir = dir.string();
+  run.progress = false;
+  const auto quiet = run_sweep_case(cases[0], run);
+  const auto loud = run_sweep_case(cases[1], run);
+  CHECK(quiet.status == CaseStatus::done);
+  CHECK(loud.status == CaseStatus::failed);
+  CHECK(loud.message.find("level 1000 %") != std::string::npos);
+  CHECK(loud.message.find("beyond --runaway-displacement 0.001 m") != std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("sweep run: PGA targets scale the record to the asked PGA, and the row says so") {
+  const test::OneThread one_thread;
+  const auto dir = fresh_folder("blockdem_sweep_pga");
+  SweepSpec spec;
+  spec.schemes = {SweepScheme{DampingScheme::none, {}, {}, {}, {}}};
+  spec.measure = IntensityMeasure::pga;
+  spec.levels = {0.05, 0.1};
+  spec.incremental = false;
+  auto base = short_coarse_study();
+  base.window_start = 0;  // the whole 15 s record
+  base.window_end = 15;
+  const auto cases = expand_sweep(spec, base);
+  REQUIRE(cases.size() == 2);
+  CHECK(cases[1].id == "rigid_aqa75_none_pga0.1g");
+  // The built-in record as the study cuts and corrects it: its PGA at the record's level (75 %).
+  std::string note;
+  const auto cut = analysis::detail::input_record(base, note);
+  const double pga_per_percent = motion::peak_values(cut).pga / standard_gravity / base.record_level;
+  const auto per_percent = analysis::detail::intensity_per_percent(cases[1], cases[1].options);
+  CHECK(per_percent.pga == doctest::Approx(pga_per_percent).epsilon(1e-14));
+  const auto levels = resolve_intensities(cases[1], cases[1].options, per_percent);
+  REQUIRE(levels.size() == 1);
+  CHECK(levels[0] * pga_per_percent == doctest::Approx(0.1).epsilon(1e-12));
+  // A target beyond 1000 % of the record is refused with the level it would need.
+  auto far = cases[1];
+  far.intensities = {19.0};
+  CHECK_THROWS_WITH_AS(resolve_intensities(far, far.options, per_percent), doctest::Contains("beyond 1000 %"), InvalidArgument);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("sweep run: a row travels between processes unchanged") {
+  CaseRow r;
+  r.index = 7;
+  r.id = "rigid_aqa75_maxwell_z0.03_b1-40_n3";
+  r.status = CaseStatus::failed;
+  r.message = "level 75 %: diverged, with a comma, \"quotes\"\nand a newline";
+  r.csv = "7,x,failed";
+  r.json = "{\n  \"a\": 1\n}";
+  r.skipped = true;
+  r.wall_seconds = 12.345678901234567;
+  const CaseRow back = analysis::detail::decode(analysis::detail::encode(r));
+  CHECK(back.index == r.index);
+  CHECK(back.id == r.id);
+  CHECK(back.status == r.status);
+  CHECK(back.message == r.message);
+  CHECK(back.csv == r.csv);
+  CHECK(back.json == r.json);
+  CHECK(back.skipped);
+  CHECK(back.wall_seconds == r.wall_seconds);
+  CHECK(analysis::detail::csv_text("a,\"b\"") == "\"a,\"\"b\"\"\"");
+}
