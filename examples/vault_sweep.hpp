@@ -30,17 +30,31 @@ struct SweepCommand {
   std::string spec;
   long long single_case = -1;
   bool list = false, summarize = false;
+  CLI::App* app = nullptr;
 
-  void add_to(CLI::App& app) {
-    base.add_to(app);
+  void add_to(CLI::App& sweep) {
+    app = &sweep;
+    base.add_to(sweep);
     base.study.out_dir = "vault_sweep";
     base.out->description("the sweep's folder: cases/<id>/ per case, summary.csv and summary.json")->default_str("vault_sweep");
-    app.add_option("spec", spec, "the sweep file (JSON: damping schemes and their grids, records, levels or intensity targets, "
+    sweep.add_option("spec", spec, "the sweep file (JSON: damping schemes and their grids, records, levels or intensity targets, "
                                  "kinematics; see analysis/sweep_file.hpp)")->required();
-    app.add_option("--case", single_case, "run only case K of the expansion (0-based, see --list), e.g. as one task of a job array")
+    sweep.add_option("--case", single_case, "run only case K of the expansion (0-based, see --list), e.g. as one task of a job array")
         ->check(CLI::NonNegativeNumber);
-    app.add_flag("--list", list, "print the cases (index and id) and stop");
-    app.add_flag("--summarize", summarize, "write the summary from the case folders as they are, running nothing");
+    sweep.add_flag("--list", list, "print the cases (index and id) and stop");
+    sweep.add_flag("--summarize", summarize, "write the summary from the case folders as they are, running nothing");
+  }
+
+  /// The options of `run` that the sweep file sets per case, or that a sweep handles itself: refused, so that none
+  /// is silently overridden.
+  void refuse_grid_options() const {
+    for (const char* option : {"--levels", "--record", "--damping", "--zeta", "--frequency", "--band", "--branches",
+                               "--kinematics", "--resume", "--stop-after-steps"})
+      if (app->count(option) > 0)
+        throw blockdem::InvalidArgument(std::string("sweep: ") + option +
+                                        " is not a base option: the sweep file gives the records, levels (or pga_g, sa_g), "
+                                        "schemes with their parameters and kinematics of each case, and a sweep run again "
+                                        "continues its interrupted cases by itself");
   }
 
   /// What must match for a finished case to be taken as it is: the command line less what only steers the sweep,
@@ -72,11 +86,9 @@ inline void print_sweep_rows(const std::vector<blockdem::analysis::CaseRow>& row
 
 inline int run_sweep_command(SweepCommand& command, int argc, char** argv) {
   using namespace blockdem;
+  command.refuse_grid_options();
   command.base.finish();
   auto& base = command.base.study;
-  if (!base.resume.empty() || base.stop_after_steps > 0)
-    throw InvalidArgument("sweep: --resume and --stop-after-steps belong to `cross_vault run`; a sweep run again continues "
-                          "its interrupted cases from their checkpoints by itself");
   const analysis::SweepSpec spec = analysis::read_sweep_file(command.spec);
   const auto cases = analysis::expand_sweep(spec, base);
   analysis::SweepRunOptions run;

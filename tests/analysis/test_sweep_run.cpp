@@ -116,6 +116,54 @@ TEST_CASE("sweep run: cases that fail are recorded, the others complete; a secon
   std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("sweep run: with measured channels, a row holds the biases of compare_tables; against itself they are 0") {
+  const test::OneThread one_thread;
+  const auto dir = fresh_folder("blockdem_sweep_measured");
+  SweepSpec spec;
+  spec.schemes = {SweepScheme{DampingScheme::none, {}, {}, {}, {}}, SweepScheme{DampingScheme::mass, {0.04}, {7.5}, {}, {}}};
+  spec.levels = {25};
+  const auto cases = expand_sweep(spec, short_coarse_study());
+  // The "measurement": the MassProp case run alone.
+  auto alone = cases[1].options;
+  alone.out_dir = (dir / "measured").string();
+  run_vault_study(alone);
+  SweepRunOptions run;
+  run.out_dir = (dir / "sweep").string();
+  run.progress = false;
+  run.measured = (dir / "measured" / "history_25.csv").string();
+  const auto same = run_sweep_case(cases[1], run);
+  const auto other = run_sweep_case(cases[0], run);
+  REQUIRE(same.status == CaseStatus::done);
+  REQUIRE(other.status == CaseStatus::done);
+  // Fields 26-32 of the row: the peak biases of OC1-y and ACC18-y, the biases of their maxima and minima, eq. 27-28.
+  auto fields = [](const std::string& csv) {
+    std::vector<std::string> f(1);
+    for (char ch : csv) {
+      if (ch == ',') f.emplace_back();
+      else f.back() += ch;
+    }
+    return f;
+  };
+  const auto s = fields(same.csv);
+  const auto o = fields(other.csv);
+  REQUIRE(s.size() == 34);
+  for (std::size_t k = 26; k <= 32; ++k) {
+    CAPTURE(k);
+    CHECK(std::stod(s[k]) == 0.0);
+  }
+  // noDamp against MassProp: the biases compare_tables gives for the two files, whatever they are.
+  const auto expected = compare_tables(read_csv_table(run.out_dir + "/cases/" + cases[0].id + "/history_25.csv"),
+                                       read_csv_table(run.measured));
+  for (const auto& c : expected) {
+    if (c.channel == "OC1_uy") CHECK(std::stod(o[26]) == doctest::Approx(c.peak_bias_percent).epsilon(1e-12));
+    if (c.channel == "ACC18_ay") CHECK(std::stod(o[27]) == doctest::Approx(c.peak_bias_percent).epsilon(1e-12));
+  }
+  CHECK(std::stod(o[26]) != 0.0);
+  CHECK(std::stod(o[32]) == doctest::Approx(mean_rmsd_error_percent(expected, "_uy")).epsilon(1e-12));
+  CHECK(other.json.find("\"compared\"") != std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("sweep run: a run that leaves every bound fails with its level, time and point, and does not stop the sweep") {
   const test::OneThread one_thread;
   const auto dir = fresh_folder("blockdem_sweep_runaway");
