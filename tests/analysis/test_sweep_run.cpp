@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string>
 
@@ -214,6 +215,35 @@ TEST_CASE("sweep run: PGA targets scale the record to the asked PGA, and the row
   far.intensities = {19.0};
   CHECK_THROWS_WITH_AS(resolve_intensities(far, far.options, per_percent), doctest::Contains("beyond 1000 %"), InvalidArgument);
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("sweep run: Sa(T) targets: a sine at the period's resonance has Sa = a0 / (2 xi), so a target of 0.5 g asks for a0 = 0.05 g") {
+  // 30 s of a0 sin(2 pi t / T) at T = 0.5 s: the 5 %-damped oscillator of period T builds up to a0 / (2 xi) = 10 a0
+  // (the transient is e^(-xi omega t) = e^(-18.8) of it by the end).
+  constexpr double period = 0.5, a0 = 0.2 * standard_gravity, dt = 0.002;
+  motion::Record sine;
+  sine.name = "resonant sine";
+  sine.dt = dt;
+  for (int i = 0; i <= 15000; ++i) sine.acceleration.push_back(a0 * std::sin(2 * std::numbers::pi * i * dt / period));
+  SweepCase c;
+  c.id = "sine_sa";
+  c.options = short_coarse_study();
+  c.options.record = sine;
+  c.options.record_level = 100;
+  c.options.baseline = "none";
+  c.options.window_start = 0;
+  c.options.window_end = 30;
+  c.measure = IntensityMeasure::sa;
+  c.sa_period = period;
+  c.intensities = {0.5};
+  c.options.levels = {100};
+  const auto per_percent = analysis::detail::intensity_per_percent(c, c.options);
+  CHECK(100 * per_percent.sa == doctest::Approx(10 * a0 / standard_gravity).epsilon(5e-3));  // 2.0 g at 100 %
+  CHECK(100 * per_percent.pga == doctest::Approx(a0 / standard_gravity).epsilon(1e-3));
+  const auto levels = resolve_intensities(c, c.options, per_percent);
+  REQUIRE(levels.size() == 1);
+  CHECK(levels[0] == doctest::Approx(25.0).epsilon(5e-3));  // 25 % of the record: a0 = 0.05 g, Sa = 0.5 g
+  CHECK(levels[0] * per_percent.sa == doctest::Approx(0.5).epsilon(1e-12));
 }
 
 TEST_CASE("sweep run: a row travels between processes unchanged") {
