@@ -94,6 +94,8 @@ struct RunCommand {
     app.add_option("--runaway-displacement", o.runaway_displacement,
                    "stop with an error when a monitor point moves farther than this from where it settled, m [0.001, 1e6]")
         ->capture_default_str();
+    app.add_option("--max-speed", o.max_speed, "stop with an error when a block or node moves faster than this, m/s [0.1, 1e6]")
+        ->capture_default_str();
     app.add_option("--history-dt", o.history_dt, "sampling interval of the histories, s")->capture_default_str();
     app.add_option("--snapshots-every", o.snapshots_every, "write the blocks every DT s of simulated time (snapshots.pvd for ParaView; 0: none)")
         ->capture_default_str();

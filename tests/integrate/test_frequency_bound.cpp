@@ -34,7 +34,11 @@ double growth(Sim& sim, double initial, long long steps = 20000) {
   const auto x0 = b.position;
   double largest = 0;
   for (long long i = 0; i < steps && largest < 1e6 * initial; ++i) {
-    sim.step();
+    try {
+      sim.step();
+    } catch (const RunawayError&) {
+      break;  // beyond 100 m/s: the run guard stops every diverging run
+    }
     for (std::size_t k = 0; k < b.size(); ++k) largest = std::max(largest, (b.position[k] - x0[k]).norm());
   }
   return largest / initial;
@@ -176,7 +180,11 @@ double node_growth(S& sim, double initial, long long steps) {
   const auto x0 = nd.position;
   double largest = 0;
   for (long long i = 0; i < steps && largest < 1e6 * initial; ++i) {
-    sim.step();
+    try {
+      sim.step();
+    } catch (const RunawayError&) {
+      break;  // beyond 100 m/s: the run guard stops every diverging run
+    }
     for (std::size_t k = 0; k < nd.size(); ++k) largest = std::max(largest, (nd.position[k] - x0[k]).norm());
   }
   return largest / initial;

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <fstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "blockdem/analysis/free_decay.hpp"
@@ -402,6 +403,7 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
   std::uint64_t hash = 0;
   auto built = [&](const model::Model& model, const models::CrossVault& vault) { hash = study_hash(o, model, vault, cut); };
   with_settled_vault(o, r, [&](auto& sim, model::Model& model, const models::CrossVault& vault, std::size_t table, const auto&) {
+    sim.set_run_guard(RunGuard{o.max_speed});
     MonitorHistory history(model, vault.monitor_points, table);
     r.monitor_points = history.names();
     SnapshotSeries snapshots(o.out_dir);
@@ -492,7 +494,14 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
       run_options.progress = o.progress;
       const std::string progress_label = "level " + label + " %";
       run_options.label = progress_label.c_str();
-      const auto summary = run_until(sim, cursor.level_start + L.duration, step, run_options);
+      const auto summary = [&] {
+        try {
+          return run_until(sim, cursor.level_start + L.duration, step, run_options);
+        } catch (const RunawayError& e) {
+          if (std::string_view(e.what()).starts_with("level ")) throw;  // check_runaway's, which names it already
+          throw RunawayError("level " + label + " %: " + e.what());
+        }
+      }();
       cursor.level_wall_seconds = wall_before + summary.wall_seconds;
       L.steps = cursor.level_steps;
       L.wall_seconds = cursor.level_wall_seconds;

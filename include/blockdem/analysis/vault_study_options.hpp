@@ -97,6 +97,7 @@ struct VaultStudyOptions {
   // A run whose state is not finite, or whose monitor point moves farther than this from where it settled
   // (relative to the table), stops with RunawayError: it diverged, or the block fell off the slab.
   double runaway_displacement = 10;        // m
+  double max_speed = 100;                  // m/s: a block or node faster than this stops the run (RunGuard)
 
   // Long runs: out_dir/checkpoint.bin is written at the end of each level, every checkpoint_minutes of wall time
   // and when the run stops early (Ctrl-C, stop_after_steps); resume continues from one, bitwise as the run would
@@ -148,6 +149,7 @@ struct VaultStudyOptions {
     check(resume.empty() || !out_dir.empty(), "--resume needs the output folder of the run it continues (--out)");
     check(runaway_displacement >= 0.001 && runaway_displacement <= 1e6,
           "--runaway-displacement must be in [0.001, 1e6] m, got " + num(runaway_displacement));
+    check(max_speed >= 0.1 && max_speed <= 1e6, "--max-speed must be in [0.1, 1e6] m/s, got " + num(max_speed));
     check(snapshots_every >= 0 && snapshots_every <= 100, "--snapshots-every must be in [0, 100] s, got " + num(snapshots_every));
   }
 };

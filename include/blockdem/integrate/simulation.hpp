@@ -36,6 +36,7 @@
 #include "blockdem/integrate/frequency_bound.hpp"
 #include "blockdem/integrate/node_contact_assignment.hpp"
 #include "blockdem/integrate/node_pass.hpp"
+#include "blockdem/integrate/run_guard.hpp"
 #include "blockdem/integrate/timestep.hpp"
 #include "blockdem/io/checkpoint.hpp"
 #include "blockdem/model/contact_detection.hpp"
@@ -269,6 +270,14 @@ class Simulation {
     if constexpr (damping::PreparedDamping<Damping>) damping_.prepare(dt_);
   }
 
+  /// The bounds a run must stay within (RunGuard): a velocity that is not finite or a speed above guard.max_speed
+  /// stops step() with RunawayError naming the block or node.
+  void set_run_guard(const RunGuard& guard) {
+    guard.validate();
+    guard_ = guard;
+  }
+  const RunGuard& run_guard() const { return guard_; }
+
   /// What holding the timestep against new contacts has done so far (see TimestepHold).
   const TimestepHold& timestep_hold() const { return hold_; }
 
@@ -372,6 +381,10 @@ class Simulation {
     pending_increment_ = true;
     time_ += dt_;
     ++steps_;
+    if (++steps_since_guard_ >= guard_.check_interval) {
+      steps_since_guard_ = 0;
+      check_velocities(*model_, guard_, time_, steps_);
+    }
   }
 
   /// Node contacts, elements, trusses, then what they apply to rigid blocks.
@@ -623,6 +636,8 @@ class Simulation {
   double time_ = 0;
   long long steps_ = 0;
   int steps_since_check_ = 0;
+  RunGuard guard_;
+  int steps_since_guard_ = 0;  // (not in checkpoints: when the checks fall changes no result)
   int detections_ = 0;
   bool pending_increment_ = false;
   bool moved_since_detection_ = false;
