@@ -4,7 +4,8 @@
 //   maxwell_fit --zeta 0.03 --band 1 40 --branches 3 [--points 500] [--tolerance 0.01]
 //               [--format table|json|csv|3dec] [--curve FILE.csv]
 //
-// Exit status: 0 on success, 2 on bad input (the message names the option and its allowed range).
+// Exit status: 0 on success, 1 if the fit did not converge (what it prints is then not a fit), 2 on bad input (the
+// message names the option and its allowed range).
 
 #include <chrono>
 #include <cmath>
@@ -190,9 +191,11 @@ int main(int argc, char** argv) {
         fmt::print("note: {} branches do not meet the tolerance {:g} (max relative error {:.4f})\n", fit.branches,
                    tolerance, fit.max_rel_error);
     }
-    if (!fit.converged)
-      std::fprintf(stderr, "maxwell_fit: warning: the fit did not converge (%s); the best point found is shown\n",
-                   solve::to_string(fit.status));
+    if (!fit.converged) {  // a fit that failed must not look like a result
+      std::fprintf(stderr, "maxwell_fit: error: the fit did not converge (%s); the best point found, shown above, is "
+                   "not a fit of the band: exit status 1\n", solve::to_string(fit.status));
+      return 1;
+    }
   } catch (const InvalidArgument& e) {
     std::fprintf(stderr, "maxwell_fit: error: %s\n", e.what());
     return exit_bad_input;
