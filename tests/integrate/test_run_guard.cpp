@@ -102,3 +102,52 @@ TEST_CASE("run guard: bad bounds name the field and its range") {
   CHECK_THROWS_WITH_AS(sim.set_run_guard(RunGuard{100, 0}), doctest::Contains("check interval must be in 1..1000000"),
                        InvalidArgument);
 }
+
+TEST_CASE("run guard: a block that sinks into a joint far too soft for it stops at a quarter of the contact's size") {
+  auto s = test::block_on_base(1, 1, 1);
+  s.model.bodies.velocity[s.block] = Vec3(0, 0, -1);
+  Sim sim(s.model, damping::None{}, [](int, int) { return contact::MohrCoulomb::Parameters(1e3, 1e3, 1e12, 1e12, 0.6); });
+  sim.set_timestep(1e-3);
+  const auto [steps, message] = run_until_stopped(sim, 2000);
+  CAPTURE(message);
+  // 1 m/s into a 1 m x 1 m joint: 0.25 m deep after 0.25 s, caught at the next check.
+  CHECK(steps > 0);
+  CHECK(sim.time() == doctest::Approx(0.25).epsilon(0.08));
+  CHECK(message.find("contact point") != std::string::npos);
+  CHECK(message.find("block 'block' (1)") != std::string::npos);
+  CHECK(message.find("(normal displacement), deeper than 0.25 times its contact's size") != std::string::npos);
+}
+
+TEST_CASE("run guard: a stress that is not finite in an element is named with its component and block") {
+  auto s = test::block_on_base(1, 1, 1);
+  s.model.make_deformable(s.block, 0.5, model::IsotropicElastic(30e9, 0.2));
+  Sim sim(s.model, damping::None{}, stiff_joint());
+  sim.set_run_guard(RunGuard{100, 1});
+  s.model.deformable.tetrahedra.stress[2][3] = std::numeric_limits<double>::quiet_NaN();
+  const auto [steps, message] = run_until_stopped(sim, 100);
+  CAPTURE(message);
+  CHECK(steps == 1);
+  CHECK(message.find("is not finite") != std::string::npos);
+  CHECK(message.find("also: the stress sigma_xy of tetrahedron 2 of block 'block' (1) is not finite") != std::string::npos);
+}
+
+TEST_CASE("run guard: a joint traction that is not finite is traced to its contact point and component") {
+  auto s = sliding_block();
+  Sim sim(s.model, damping::None{}, stiff_joint());
+  sim.set_run_guard(RunGuard{100, 1});
+  auto& g = sim.group<contact::MohrCoulomb>();
+  REQUIRE(g.size() > 2);
+  g.history[2].shear[1] = std::numeric_limits<double>::quiet_NaN();
+  const auto [steps, message] = run_until_stopped(sim, 100);
+  CAPTURE(message);
+  CHECK(steps == 1);
+  CHECK(message.find("velocity of block 'block' (1) is not finite") != std::string::npos);
+  CHECK(message.find("also: the shear stress 2 of contact point 2 between block") != std::string::npos);
+}
+
+TEST_CASE("run guard: the overlap bound is checked") {
+  auto s = test::block_on_base(1, 1, 1);
+  Sim sim(s.model, damping::None{}, stiff_joint());
+  CHECK_THROWS_WITH_AS(sim.set_run_guard(RunGuard{100, 16, 0}), doctest::Contains("max overlap must be in (0, 10]"),
+                       InvalidArgument);
+}

@@ -270,8 +270,9 @@ class Simulation {
     if constexpr (damping::PreparedDamping<Damping>) damping_.prepare(dt_);
   }
 
-  /// The bounds a run must stay within (RunGuard): a velocity that is not finite or a speed above guard.max_speed
-  /// stops step() with RunawayError naming the block or node.
+  /// The bounds a run must stay within (RunGuard): a velocity, traction or stress that is not finite, a speed above
+  /// guard.max_speed or an overlap deeper than guard.max_overlap times the contact's size stops step() with
+  /// RunawayError naming the block, node, element or contact point and the component.
   void set_run_guard(const RunGuard& guard) {
     guard.validate();
     guard_ = guard;
@@ -383,7 +384,7 @@ class Simulation {
     ++steps_;
     if (++steps_since_guard_ >= guard_.check_interval) {
       steps_since_guard_ = 0;
-      check_velocities(*model_, guard_, time_, steps_);
+      check_run(*model_, groups_, deformable(), guard_, time_, steps_);
     }
   }
 
