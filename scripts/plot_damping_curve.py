@@ -7,6 +7,7 @@ the Maxwell fit, mass-proportional and Rayleigh damping against frequency, and |
 Needs numpy and matplotlib (Debian: python3-numpy python3-matplotlib; scripts/install-deps.sh --plots)."""
 import argparse
 import sys
+from figures import save_figure
 
 try:
     import matplotlib
@@ -56,7 +57,7 @@ def main():
     ax2.set_title(f"max |M_T| = {c['modulus'].max():.3f}")
     fig.tight_layout()
     out = args.out or args.csv.rsplit(".", 1)[0] + ".png"
-    fig.savefig(out, dpi=110)
+    save_figure(fig, out, dpi=110)
     print(f"wrote {out}")
 
 

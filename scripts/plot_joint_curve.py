@@ -9,6 +9,7 @@ Needs numpy and matplotlib (Debian: python3-numpy python3-matplotlib; scripts/in
 import argparse
 import math
 import sys
+from figures import save_figure
 
 try:
     import matplotlib
@@ -81,7 +82,7 @@ def main():
         ax.set_visible(False)
     fig.tight_layout()
     out = args.out or args.csv[0].rsplit(".", 1)[0] + ".png"
-    fig.savefig(out, dpi=90)
+    save_figure(fig, out, dpi=90)
     print(f"wrote {out}")
 
 

@@ -33,7 +33,8 @@ except ImportError as error:
     sys.exit(f"plot_sweep.py: {error}; install python3-numpy and python3-matplotlib "
              "(scripts/install-deps.sh --plots)")
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # sweep_summary.py sits next to this script
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # figures.py, sweep_summary.py sit next to this script
+from figures import save_figure
 from sweep_summary import (ACC18, NAMES, OC1, SELECTED, SYNTHETIC_TAG, fail, grids, groups_text, is_selected,
                            key_number, list_unfinished, percent, print_all, read_summary, record_text,
                            setting_text, summary_path)
@@ -123,7 +124,7 @@ def table3(groups, measured, path):
             cell.set_facecolor("0.9")
     table.auto_set_column_width(list(range(len(header))))
     fig.suptitle("\n".join(lines), fontsize=9, y=1 - 0.06 / height, va="top")
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path
 
@@ -250,7 +251,7 @@ def heatmaps(groups, measured, path):
     notes = table_notes(groups)
     text = f"{head}\n{groups_text(groups)}" + (f"; {'; '.join(notes)}" if notes else "") + f"\n{legend}"
     fig.suptitle(wrap(text, fig.get_figwidth()), fontsize=9)
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     return path
 
@@ -383,7 +384,7 @@ def ida(cases, path):
             ("; triangles at the right edge: off-scale drift (collapse?), value written" if off_scale else ""))
     fig.suptitle(wrap(text, fig.get_figwidth()), fontsize=9)
     fig.tight_layout(rect=(0, 0, 1 - legend_width / fig.get_figwidth(), 1))
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     for note in fractile_notes:
         print(f"IDA: {note}")

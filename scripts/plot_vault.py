@@ -13,6 +13,7 @@ import argparse
 import json
 import os
 import sys
+from figures import save_figure
 
 try:
     import matplotlib
@@ -47,6 +48,8 @@ class Run:
 
     def history(self, level):
         path = os.path.join(self.folder, f"history_{self.level_name(level)}.csv")
+        if not os.path.exists(path) and os.path.exists(path + ".part"):
+            path += ".part"  # a level the run did not finish (interrupted, or stopped by the run guard)
         try:
             with open(path) as f:
                 header = f.readline().strip().split(",")
@@ -106,7 +109,7 @@ def plot_channels(runs, channels, ylabel, scale, path, title):
     axes[0][0].legend(fontsize=8)
     fig.suptitle(f"{title}\n({input_note(runs)})", fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     print(path)
 
@@ -142,7 +145,7 @@ def plot_damage(runs, path):
     if any(ax.get_legend_handles_labels()[0] for ax in axes.flat):
         fig.legend(loc="lower center", fontsize=8, markerscale=4, frameon=False)
     fig.suptitle(f"Joint damage, vault and infill, plan view (x east, y north)\n({input_note(runs)})", fontsize=9)
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     print(path)
 
@@ -165,7 +168,7 @@ def plot_timing(runs, path):
     table.scale(1, 1.4)
     ax.set_title("Wall time of the incremental analysis (the paper's Table 4)", fontsize=10)
     fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save_figure(fig, path, dpi=110)
     plt.close(fig)
     print(path)
 

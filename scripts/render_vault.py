@@ -18,6 +18,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
+from figures import save_figure  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 # Component indices as in include/blockdem/models/cross_vault.hpp (enum class Component).
@@ -102,7 +103,7 @@ def main():
     fig.legend(handles=[Patch(facecolor=COLOURS[c], edgecolor="#202020", label=COMPONENTS[c]) for c in present],
                loc="lower center", ncol=len(present), frameon=False)
     fig.tight_layout(rect=(0, 0.06, 1, 1))
-    fig.savefig(args.png, dpi=args.dpi)
+    save_figure(fig, args.png, dpi=args.dpi)
     print(f"wrote {args.png}")
 
 

@@ -68,6 +68,9 @@ TEST_CASE("vault study: a run stopped inside a level and resumed from its checkp
   CHECK(part1.interrupted);
   CHECK(part1.levels.size() == 1);  // the level in progress, as far as it went
   CHECK(contents(base / "split" / "report.json").find("\"complete\": false") != std::string::npos);
+  // The history of a level not finished is not under its own name, which only a whole level's history takes.
+  CHECK_FALSE(std::filesystem::exists(base / "split" / "history_25.csv"));
+  CHECK(std::filesystem::exists(base / "split" / "history_25.csv.part"));
   o.resume = (base / "split" / analysis::study_checkpoint_file).string();
   o.stop_after_steps = first_level + (all - first_level) / 3;
   const auto part2 = analysis::run_vault_study(o);
@@ -94,6 +97,8 @@ TEST_CASE("vault study: a run stopped inside a level and resumed from its checkp
   }
   CHECK(resumed.settling.steps == whole.settling.steps);
   CHECK(contents(base / "split" / "report.json").find("\"complete\": true") != std::string::npos);
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(base / "split"))
+    CHECK_MESSAGE(entry.path().extension() != ".part", entry.path().string());
   std::filesystem::remove_all(base);
 }
 

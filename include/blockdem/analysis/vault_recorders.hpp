@@ -1,7 +1,8 @@
 #pragma once
 // What the vault study records during a level: the monitor points' histories (displacement relative to the table,
 // acceleration from centred differences of the velocity, paper Sect. 5.3), streamed to CSV so that the file is
-// readable while the run goes on, with their peaks; and the census of damaged joints per component (Sect. 5.2).
+// readable while the run goes on (as <file>.part, renamed when the level ends or the run guard stops it: a history
+// under its own name is whole, a .part one belongs to a run killed or interrupted in that level), with their peaks; and the census of damaged joints per component (Sect. 5.2).
 
 #include <algorithm>
 #include <array>
@@ -18,6 +19,7 @@
 #include "blockdem/contact/softening.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/types.hpp"
+#include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/checkpoint.hpp"
 #include "blockdem/model/model.hpp"
 #include "blockdem/models/cross_vault.hpp"
@@ -62,7 +64,8 @@ class MonitorHistory {
   std::size_t points() const { return names_.size(); }
   const std::vector<std::string>& names() const { return names_; }
 
-  /// Starts a level: the reference positions are the current ones; `path` (may be empty) receives the CSV.
+  /// Starts a level: the reference positions are the current ones; `path` (may be empty) receives the CSV, written
+  /// as io::partial_path(path) until end_level().
   void begin_level(const model::Model& model, double time0, const std::string& path) {
     time0_ = time0;
     reference_.clear();
@@ -75,10 +78,10 @@ class MonitorHistory {
     for (const auto& n : names_)
       for (const char* q : {"ux", "uy", "uz", "ax", "ay", "az"}) peaks_.push_back({n + "_" + q});
     out_ = std::ofstream();
+    path_ = path;
     if (!path.empty()) {
-      out_.open(path);
-      if (!out_) throw InvalidArgument("cannot open '" + path + "' for writing");
-      path_ = path;
+      out_.open(io::partial_path(path));
+      if (!out_) throw InvalidArgument("cannot open '" + io::partial_path(path) + "' for writing");
       std::string header = "time";
       for (const auto& p : peaks_) (header += ',') += p.name;
       header += '\n';
@@ -107,14 +110,14 @@ class MonitorHistory {
     if (samples_.size() > 3) samples_.erase(samples_.begin());
   }
 
-  /// Writes the last row and closes the file.
+  /// Writes the last row, closes the file and gives it its name.
   void end_level() {
     if (!samples_.empty()) write_row(samples_.size() - 1);
-    if (out_.is_open()) {
-      out_.flush();
-      if (!out_) throw InvalidArgument("writing '" + path_ + "' failed");
-      out_.close();
-    }
+    if (!out_.is_open()) return;
+    io::close_checked(out_, io::partial_path(path_));
+    std::error_code error;
+    std::filesystem::rename(io::partial_path(path_), path_, error);
+    if (error) throw InvalidArgument("cannot write '" + path_ + "': " + error.message());
   }
 
   /// The state of the level in progress, for a checkpoint: the references, the last samples, the peaks and how
@@ -123,25 +126,27 @@ class MonitorHistory {
   /// The reverse of save_state(); then resume_file() reopens the CSV.
   void load_state(io::CheckpointReader& r) { visit_state(*this, r); }
 
-  /// Continues the level's CSV at `path` (may be empty: none): cut back to what the checkpoint had written (a run
-  /// that went on after its checkpoint wrote more), then appended to. Throws InvalidArgument if the file is missing
-  /// or shorter than that.
+  /// Continues the level's CSV at `path` (may be empty: none), in io::partial_path(path) (taken back from `path`
+  /// if a run that went on after its checkpoint had finished the level): cut back to what the checkpoint had
+  /// written, then appended to. Throws InvalidArgument if the file is missing or shorter than that.
   void resume_file(const std::string& path) {
     out_ = std::ofstream();
+    path_ = path;
     if (path.empty()) return;
     std::error_code error;
-    const auto size = std::filesystem::file_size(path, error);
+    const std::string part = io::partial_path(path);
+    if (!std::filesystem::exists(part, error) && std::filesystem::exists(path, error)) std::filesystem::rename(path, part, error);
+    const auto size = std::filesystem::file_size(part, error);
     if (error || size < bytes_)
-      throw InvalidArgument("--resume: the history '" + path + "' " +
+      throw InvalidArgument("--resume: the history '" + part + "' " +
                             (error ? "cannot be read (" + error.message() + ")"
                                    : "holds " + std::to_string(size) + " bytes, fewer than the " + std::to_string(bytes_) +
                                          " the checkpoint wrote") +
                             "; resume into the output folder of the run that wrote the checkpoint");
-    std::filesystem::resize_file(path, bytes_, error);
-    if (error) throw InvalidArgument("--resume: cannot cut '" + path + "' back to the checkpoint: " + error.message());
-    out_.open(path, std::ios::app);
-    if (!out_) throw InvalidArgument("cannot open '" + path + "' for writing");
-    path_ = path;
+    std::filesystem::resize_file(part, bytes_, error);
+    if (error) throw InvalidArgument("--resume: cannot cut '" + part + "' back to the checkpoint: " + error.message());
+    out_.open(part, std::ios::app);
+    if (!out_) throw InvalidArgument("cannot open '" + part + "' for writing");
   }
 
   const std::vector<ChannelPeaks>& peaks() const { return peaks_; }
@@ -211,7 +216,7 @@ class MonitorHistory {
     row += '\n';
     if (out_.is_open()) {
       put(row);
-      out_.flush();
+      if (!out_.flush()) throw InvalidArgument("cannot write '" + io::partial_path(path_) + "' (disk full?)");
     }
     ++written_;
   }

@@ -498,6 +498,7 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
         try {
           return run_until(sim, cursor.level_start + L.duration, step, run_options);
         } catch (const RunawayError& e) {
+          history.end_level();  // the history up to the stop is whole: it keeps its name, for the plots
           if (std::string_view(e.what()).starts_with("level ")) throw;  // check_runaway's, which names it already
           throw RunawayError("level " + label + " %: " + e.what());
         }

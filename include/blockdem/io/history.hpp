@@ -9,6 +9,7 @@
 
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/types.hpp"
+#include "blockdem/io/atomic_file.hpp"
 #include "blockdem/model/model.hpp"
 
 namespace blockdem::io {
@@ -61,9 +62,13 @@ class HistoryRecorder {
   }
 
   /// Columns: time_s, then for each point <name>_ux,_uy,_uz (m), _vx,_vy,_vz (m/s), _ax,_ay,_az (m/s^2).
+  /// Written atomically (io/atomic_file.hpp).
   void write_csv(const std::string& path) const {
-    std::ofstream out(path);
-    if (!out) throw InvalidArgument("history: cannot open '" + path + "' for writing");
+    write_atomically(path, [&](std::ostream& out) { write_rows(out); });
+  }
+
+ private:
+  void write_rows(std::ostream& out) const {
     out << "time_s";
     for (const auto& p : points_)
       for (const char* q : {"ux", "uy", "uz", "vx", "vy", "vz", "ax", "ay", "az"}) out << ',' << p.name << '_' << q;
@@ -82,10 +87,8 @@ class HistoryRecorder {
       }
       out << '\n';
     }
-    if (!out) throw InvalidArgument("history: writing '" + path + "' failed");
   }
 
- private:
   int interval_;
   long long calls_ = 0;
   std::vector<MonitorPoint> points_;

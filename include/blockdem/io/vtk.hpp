@@ -1,28 +1,23 @@
 #pragma once
 // VTK XML unstructured grids (.vtu) for ParaView: blocks as polygon faces with per-block fields, contact points as
-// vertices with their stresses, gap and damage.
+// vertices with their stresses, gap and damage. Every file is written atomically (io/atomic_file.hpp).
 
 #include <cstdio>
-#include <fstream>
 #include <map>
+#include <ostream>
 #include <string>
 #include <vector>
 
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/types.hpp"
+#include "blockdem/io/atomic_file.hpp"
 #include "blockdem/model/model.hpp"
 
 namespace blockdem::io {
 
 namespace detail {
 
-inline std::ofstream open_for_writing(const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw InvalidArgument("vtk: cannot open '" + path + "' for writing");
-  return out;
-}
-
-inline void write_points(std::ofstream& out, const std::vector<Vec3>& points) {
+inline void write_points(std::ostream& out, const std::vector<Vec3>& points) {
   out << "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
   char buffer[96];
   for (const auto& p : points) {
@@ -33,7 +28,7 @@ inline void write_points(std::ofstream& out, const std::vector<Vec3>& points) {
 }
 
 template <class T>
-void write_array(std::ofstream& out, const std::string& name, const std::vector<T>& values, int components = 1) {
+void write_array(std::ostream& out, const std::string& name, const std::vector<T>& values, int components = 1) {
   out << "<DataArray type=\"" << (std::is_integral_v<T> ? "Int32" : "Float64") << "\" Name=\"" << name
       << "\" NumberOfComponents=\"" << components << "\" format=\"ascii\">\n";
   for (const auto& v : values) out << v << ' ';
@@ -67,21 +62,21 @@ inline void write_blocks_vtu(const std::string& path, const model::Model& model,
       for (const auto& [name, values] : fields) cell_fields[name].push_back(values[i]);
     }
   }
-  auto out = detail::open_for_writing(path);
-  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-      << "<UnstructuredGrid><Piece NumberOfPoints=\"" << points.size() << "\" NumberOfCells=\"" << types.size() << "\">\n";
-  detail::write_points(out, points);
-  out << "<Cells>\n";
-  detail::write_array(out, "connectivity", connectivity);
-  detail::write_array(out, "offsets", offsets);
-  out << "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-  for (int t : types) out << t << ' ';
-  out << "\n</DataArray>\n</Cells>\n<CellData Scalars=\"block\">\n";
-  detail::write_array(out, "block", block);
-  detail::write_array(out, "motion", motion);
-  for (const auto& [name, values] : cell_fields) detail::write_array(out, name, values);
-  out << "</CellData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
-  if (!out) throw InvalidArgument("vtk: writing '" + path + "' failed");
+  write_atomically(path, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+        << "<UnstructuredGrid><Piece NumberOfPoints=\"" << points.size() << "\" NumberOfCells=\"" << types.size() << "\">\n";
+    detail::write_points(out, points);
+    out << "<Cells>\n";
+    detail::write_array(out, "connectivity", connectivity);
+    detail::write_array(out, "offsets", offsets);
+    out << "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+    for (int t : types) out << t << ' ';
+    out << "\n</DataArray>\n</Cells>\n<CellData Scalars=\"block\">\n";
+    detail::write_array(out, "block", block);
+    detail::write_array(out, "motion", motion);
+    for (const auto& [name, values] : cell_fields) detail::write_array(out, name, values);
+    out << "</CellData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+  });
 }
 
 /// Writes points (e.g. the contact points found before a run) as vertices with per-point scalar fields (name -> one
@@ -95,29 +90,29 @@ inline void write_points_vtu(const std::string& path, const std::vector<Vec3>& p
   };
   for (const auto& [name, values] : scalars) check(name, values.size());
   for (const auto& [name, values] : vectors) check(name, values.size());
-  auto out = detail::open_for_writing(path);
-  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-      << "<UnstructuredGrid><Piece NumberOfPoints=\"" << points.size() << "\" NumberOfCells=\"" << points.size() << "\">\n";
-  detail::write_points(out, points);
-  std::vector<int> connectivity(points.size()), offsets(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    connectivity[i] = static_cast<int>(i);
-    offsets[i] = static_cast<int>(i + 1);
-  }
-  out << "<Cells>\n";
-  detail::write_array(out, "connectivity", connectivity);
-  detail::write_array(out, "offsets", offsets);
-  out << "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-  for (std::size_t i = 0; i < points.size(); ++i) out << "1 ";  // VTK_VERTEX
-  out << "\n</DataArray>\n</Cells>\n<PointData>\n";
-  for (const auto& [name, values] : scalars) detail::write_array(out, name, values);
-  for (const auto& [name, values] : vectors) {
-    std::vector<double> flat;
-    for (const auto& v : values) flat.insert(flat.end(), {v.x(), v.y(), v.z()});
-    detail::write_array(out, name, flat, 3);
-  }
-  out << "</PointData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
-  if (!out) throw InvalidArgument("vtk: writing '" + path + "' failed");
+  write_atomically(path, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+        << "<UnstructuredGrid><Piece NumberOfPoints=\"" << points.size() << "\" NumberOfCells=\"" << points.size() << "\">\n";
+    detail::write_points(out, points);
+    std::vector<int> connectivity(points.size()), offsets(points.size());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      connectivity[i] = static_cast<int>(i);
+      offsets[i] = static_cast<int>(i + 1);
+    }
+    out << "<Cells>\n";
+    detail::write_array(out, "connectivity", connectivity);
+    detail::write_array(out, "offsets", offsets);
+    out << "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+    for (std::size_t i = 0; i < points.size(); ++i) out << "1 ";  // VTK_VERTEX
+    out << "\n</DataArray>\n</Cells>\n<PointData>\n";
+    for (const auto& [name, values] : scalars) detail::write_array(out, name, values);
+    for (const auto& [name, values] : vectors) {
+      std::vector<double> flat;
+      for (const auto& v : values) flat.insert(flat.end(), {v.x(), v.y(), v.z()});
+      detail::write_array(out, name, flat, 3);
+    }
+    out << "</PointData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+  });
 }
 
 /// Writes the tetrahedra of the deformable blocks (VTK_TETRA) with the point fields `density_scaling_factor`
@@ -126,46 +121,46 @@ inline void write_points_vtu(const std::string& path, const std::vector<Vec3>& p
 inline void write_tetrahedra_vtu(const std::string& path, const model::Model& model, const std::vector<Vec3>& reference = {}) {
   const auto& nd = model.deformable.nodes;
   const auto& te = model.deformable.tetrahedra;
-  auto out = detail::open_for_writing(path);
-  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-      << "<UnstructuredGrid><Piece NumberOfPoints=\"" << nd.size() << "\" NumberOfCells=\"" << te.size() << "\">\n";
-  detail::write_points(out, nd.position);
-  std::vector<int> connectivity, offsets;
-  for (std::size_t t = 0; t < te.size(); ++t) {
-    for (auto n : te.node[t]) connectivity.push_back(static_cast<int>(n));
-    offsets.push_back(static_cast<int>(4 * (t + 1)));
-  }
-  out << "<Cells>\n";
-  detail::write_array(out, "connectivity", connectivity);
-  detail::write_array(out, "offsets", offsets);
-  out << "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-  for (std::size_t t = 0; t < te.size(); ++t) out << "10 ";  // VTK_TETRA
-  out << "\n</DataArray>\n</Cells>\n<PointData Scalars=\"density_scaling_factor\">\n";
-  std::vector<double> dsf(nd.size()), displacement;
-  std::vector<int> block(nd.size());
-  for (std::size_t i = 0; i < nd.size(); ++i) {
-    dsf[i] = nd.density_scaling_factor(i);
-    block[i] = static_cast<int>(nd.block[i]);
-  }
-  detail::write_array(out, "density_scaling_factor", dsf);
-  detail::write_array(out, "block", block);
-  if (reference.size() == nd.size()) {
-    for (std::size_t i = 0; i < nd.size(); ++i) {
-      const Vec3 u = nd.position[i] - reference[i];
-      displacement.insert(displacement.end(), {u.x(), u.y(), u.z()});
+  write_atomically(path, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+        << "<UnstructuredGrid><Piece NumberOfPoints=\"" << nd.size() << "\" NumberOfCells=\"" << te.size() << "\">\n";
+    detail::write_points(out, nd.position);
+    std::vector<int> connectivity, offsets;
+    for (std::size_t t = 0; t < te.size(); ++t) {
+      for (auto n : te.node[t]) connectivity.push_back(static_cast<int>(n));
+      offsets.push_back(static_cast<int>(4 * (t + 1)));
     }
-    detail::write_array(out, "displacement", displacement, 3);
-  }
-  out << "</PointData>\n<CellData>\n";
-  std::vector<double> stress, mean;
-  for (const auto& s : te.stress) {
-    stress.insert(stress.end(), s.begin(), s.end());
-    mean.push_back((s[0] + s[1] + s[2]) / 3.0);
-  }
-  detail::write_array(out, "stress", stress, 6);
-  detail::write_array(out, "mean_stress", mean);
-  out << "</CellData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
-  if (!out) throw InvalidArgument("vtk: writing '" + path + "' failed");
+    out << "<Cells>\n";
+    detail::write_array(out, "connectivity", connectivity);
+    detail::write_array(out, "offsets", offsets);
+    out << "<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+    for (std::size_t t = 0; t < te.size(); ++t) out << "10 ";  // VTK_TETRA
+    out << "\n</DataArray>\n</Cells>\n<PointData Scalars=\"density_scaling_factor\">\n";
+    std::vector<double> dsf(nd.size()), displacement;
+    std::vector<int> block(nd.size());
+    for (std::size_t i = 0; i < nd.size(); ++i) {
+      dsf[i] = nd.density_scaling_factor(i);
+      block[i] = static_cast<int>(nd.block[i]);
+    }
+    detail::write_array(out, "density_scaling_factor", dsf);
+    detail::write_array(out, "block", block);
+    if (reference.size() == nd.size()) {
+      for (std::size_t i = 0; i < nd.size(); ++i) {
+        const Vec3 u = nd.position[i] - reference[i];
+        displacement.insert(displacement.end(), {u.x(), u.y(), u.z()});
+      }
+      detail::write_array(out, "displacement", displacement, 3);
+    }
+    out << "</PointData>\n<CellData>\n";
+    std::vector<double> stress, mean;
+    for (const auto& s : te.stress) {
+      stress.insert(stress.end(), s.begin(), s.end());
+      mean.push_back((s[0] + s[1] + s[2]) / 3.0);
+    }
+    detail::write_array(out, "stress", stress, 6);
+    detail::write_array(out, "mean_stress", mean);
+    out << "</CellData>\n</Piece></UnstructuredGrid>\n</VTKFile>\n";
+  });
 }
 
 /// Writes the contact points of a simulation as vertices with normal_stress, shear_stress (Pa), gap (m), area (m^2),
