@@ -249,11 +249,7 @@ inline void write_case_file(const std::string& dir, const CaseRow& row, const st
   io::JsonObject j;
   j.add("id", row.id).add("status", name(row.status)).add("message", row.message).add("fingerprint", fingerprint)
       .add("wall_seconds", row.wall_seconds).add("csv", row.csv).add_raw("row", row.json);
-  io::write_atomically(dir + "/case.json", [&](const std::string& path) {
-    std::ofstream out(path);
-    out << j.str() << '\n';
-    if (!out) throw InvalidArgument("cannot write '" + dir + "/case.json'");
-  });
+  io::write_atomically(dir + "/case.json", [&](std::ostream& out) { out << j.str() << '\n'; });
 }
 
 /// The case's earlier record, if it has one that reads.
@@ -376,11 +372,9 @@ inline CaseRow recorded_row(const SweepCase& c, const SweepRunOptions& run) {
 
 /// Writes OUT/summary.csv and OUT/summary.json (atomically) from the rows, one per case, in case order.
 inline void write_summary(const SweepRunOptions& run, const std::vector<CaseRow>& rows) {
-  io::write_atomically(run.out_dir + "/summary.csv", [&](const std::string& path) {
-    std::ofstream out(path);
+  io::write_atomically(run.out_dir + "/summary.csv", [&](std::ostream& out) {
     out << summary_header << '\n';
     for (const auto& r : rows) out << r.csv << '\n';
-    if (!out) throw InvalidArgument("cannot write '" + run.out_dir + "/summary.csv'");
   });
   std::size_t done = 0, failed = 0, pending = 0;
   for (const auto& r : rows) {
@@ -395,11 +389,7 @@ inline void write_summary(const SweepRunOptions& run, const std::vector<CaseRow>
   j.add("program", "blockdem cross_vault sweep").add("cases", static_cast<long long>(rows.size()))
       .add("done", static_cast<long long>(done)).add("failed", static_cast<long long>(failed))
       .add("not_finished", static_cast<long long>(pending)).add("measured", run.measured).add_raw("rows", cases);
-  io::write_atomically(run.out_dir + "/summary.json", [&](const std::string& path) {
-    std::ofstream out(path);
-    out << j.str() << '\n';
-    if (!out) throw InvalidArgument("cannot write '" + run.out_dir + "/summary.json'");
-  });
+  io::write_atomically(run.out_dir + "/summary.json", [&](std::ostream& out) { out << j.str() << '\n'; });
 }
 
 namespace detail {
@@ -426,7 +416,13 @@ inline CaseRow decode(const std::string& s) {
   }
   if (f.size() != 8) throw InvalidArgument("sweep: a malformed case row came back from a worker");
   CaseRow r;
-  r.index = std::stoull(f[0]);
+  try {
+    r.index = std::stoull(f[0]);
+    r.wall_seconds = std::stod(f[7]);
+  } catch (const std::logic_error&) {  // std::invalid_argument, std::out_of_range: not numbers
+    throw InvalidArgument("sweep: a malformed case row came back from a worker (index '" + f[0] + "', wall time '" +
+                          f[7] + "')");
+  }
   r.id = f[1];
   r.message = f[2];
   r.csv = f[3];
@@ -434,7 +430,6 @@ inline CaseRow decode(const std::string& s) {
   for (const CaseStatus st : {CaseStatus::done, CaseStatus::failed, CaseStatus::interrupted, CaseStatus::pending})
     if (f[5] == name(st)) r.status = st;
   r.skipped = f[6] == "1";
-  r.wall_seconds = std::stod(f[7]);
   return r;
 }
 

@@ -292,24 +292,19 @@ inline std::string report_json(const VaultStudyResult& r) {
 
 /// free_vibration.csv: the OC1 response of measure_free_vibration.
 inline void write_free_vibration(const std::string& dir, const FreeVibrationResult& f) {
-  io::write_atomically(dir + "/free_vibration.csv", [&](const std::string& path) {
-    std::ofstream out(path);
+  io::write_atomically(dir + "/free_vibration.csv", [&](std::ostream& out) {
     out << "time,OC1_u\n";
     char line[64];
     for (std::size_t i = 0; i < f.time.size(); ++i) {
       std::snprintf(line, sizeof line, "%.6f,%.9g\n", f.time[i], f.response[i]);
       out << line;
     }
-    if (!out) throw InvalidArgument("cannot write '" + path + "'");
   });
 }
 
 inline void write_report(const std::string& dir, const VaultStudyResult& r) {
   const std::string text = report_json(r) + "\n";
-  io::write_atomically(dir + "/report.json", [&](const std::string& path) {
-    std::ofstream out(path);
-    if (!(out << text)) throw InvalidArgument("cannot write '" + path + "'");
-  });
+  io::write_atomically(dir + "/report.json", [&](std::ostream& out) { out << text; });
 }
 
 inline io::BlockFields block_fields(const model::Model& model, const models::CrossVault& vault, const std::vector<Vec3>& reference) {
@@ -336,10 +331,9 @@ void write_level_outputs(const std::string& dir, const std::string& label, const
     block_damage[c.block_a] = std::max(block_damage[c.block_a], c.damage);
     block_damage[c.block_b] = std::max(block_damage[c.block_b], c.damage);
   });
-  io::write_atomically(dir + "/damage_" + label + ".vtu", [&](const std::string& p) { io::write_blocks_vtu(p, model, fields); });
-  io::write_atomically(dir + "/contacts_" + label + ".vtu", [&](const std::string& p) { io::write_contacts_vtu(p, sim); });
-  io::write_atomically(dir + "/contacts_" + label + ".csv", [&](const std::string& p) {
-    std::ofstream out(p);
+  io::write_blocks_vtu(dir + "/damage_" + label + ".vtu", model, fields);
+  io::write_contacts_vtu(dir + "/contacts_" + label + ".vtu", sim);
+  io::write_atomically(dir + "/contacts_" + label + ".csv", [&](std::ostream& out) {
     out << "x,y,z,nx,ny,nz,area,gap,normal_stress,shear_stress,damage,never_bonded,component_a,component_b\n";
     char line[320];
     sim.visit_contacts([&](const auto& c) {
@@ -349,7 +343,6 @@ void write_level_outputs(const std::string& dir, const std::string& label, const
                     std::string(models::name(vault.blocks[c.block_b].component)).c_str());
       out << line;
     });
-    if (!out) throw InvalidArgument("cannot write '" + p + "'");
   });
 }
 
@@ -375,7 +368,11 @@ class SnapshotSeries {
     }
   }
   void load_state(io::CheckpointReader& r) {
-    frames_.resize(static_cast<std::size_t>(r.read_value<std::uint64_t>("snapshot frames")));
+    const auto frames = r.read_value<std::uint64_t>("snapshot frames");
+    if (frames > r.remaining() / (sizeof(double) + sizeof(std::uint64_t)))  // each a time and a file name
+      r.fail("snapshot frames", "a count of " + std::to_string(frames) + " frames, more than the " +
+                                    std::to_string(r.remaining()) + " bytes left can hold");
+    frames_.resize(static_cast<std::size_t>(frames));
     for (auto& [time, file] : frames_) {
       r.read(time, "snapshot time");
       r.read(file, "snapshot file");
@@ -392,10 +389,9 @@ class SnapshotSeries {
     std::filesystem::create_directories(dir_ + "/snapshots");
     const std::string name = "snapshots/level" + label + "_" + std::to_string(frames_in_level_[label]++) + ".vtu";
     const auto fields = detail::block_fields(model, vault, reference);
-    io::write_atomically(dir_ + "/" + name, [&](const std::string& p) { io::write_blocks_vtu(p, model, fields); });
+    io::write_blocks_vtu(dir_ + "/" + name, model, fields);
     frames_.emplace_back(time, name);
-    io::write_atomically(dir_ + "/snapshots.pvd", [&](const std::string& p) {
-      std::ofstream out(p);
+    io::write_atomically(dir_ + "/snapshots.pvd", [&](std::ostream& out) {
       out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
       char line[256];
       for (const auto& [when, file] : frames_) {
@@ -403,7 +399,6 @@ class SnapshotSeries {
         out << line;
       }
       out << "</Collection>\n</VTKFile>\n";
-      if (!out) throw InvalidArgument("cannot write '" + p + "'");
     });
   }
 

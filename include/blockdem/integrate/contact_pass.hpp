@@ -180,10 +180,11 @@ void contact_pass_of(G& g, const model::RigidBodies& b, const Damping& damping, 
           // Spring elongations in the sense of the stresses: closing the gap compresses, shear stress opposes du_s.
           [[maybe_unused]] const std::array<double, 3> e{-du_n, -du_s[0], -du_s[1]};
           std::array<double, 3> v{0.0, 0.0, 0.0};  // viscous stresses, Pa
-          if constexpr (own_branches) {
-            v = damping.spring_stresses(point_spring[k], kn, ks, e, increment_dt, active, dissipated);
-          } else if constexpr (G::has_field) {
-            inactive = inactive || !active;
+          if constexpr (G::has_field) {  // own_branches only here: Clang checks the call for every policy otherwise
+            if constexpr (own_branches)
+              v = damping.spring_stresses(point_spring[k], kn, ks, e, increment_dt, active, dissipated);
+            else
+              inactive = inactive || !active;
           } else if constexpr (damping::SpringTripleDamping<Damping>) {
             v = damping.spring_stresses(point_spring[k], kn, ks, e, increment_dt, active, dissipated);
           } else {

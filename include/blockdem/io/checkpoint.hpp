@@ -128,7 +128,11 @@ inline constexpr bool plain_checkpoint_value = detail::Plain<T>::value;
 /// is read by the type that wrote it.
 template <class T>
 std::string type_name() {
+#if defined(__cpp_lib_source_location)
   std::string_view name = std::source_location::current().function_name();
+#else  // Clang before 15 with libstdc++ has no std::source_location; the same text, from the compiler
+  std::string_view name = __PRETTY_FUNCTION__;
+#endif
   // GCC and Clang: "... type_name() [with T = X; ...]" or "[T = X]": X alone; other compilers: the whole name.
   if (const auto begin = name.find("T = "); begin != std::string_view::npos) {
     name.remove_prefix(begin + 4);
@@ -357,7 +361,7 @@ inline CheckpointHeader read_checkpoint_header(std::istream& in, const std::stri
   header.read(h.payload_size, "the payload size");
   h.payload_offset = file_size - header.remaining();
   const std::uint64_t expected = h.payload_size + sizeof(std::uint64_t);  // payload and checksum
-  if (header.remaining() < expected)
+  if (h.payload_size > header.remaining() || header.remaining() < expected)  // the first: `expected` may wrap
     throw InvalidArgument(prefix + "truncated: the header announces " + std::to_string(h.payload_size) +
                           " bytes of payload and an 8-byte checksum, the file has " + std::to_string(header.remaining()) +
                           " bytes after the header");

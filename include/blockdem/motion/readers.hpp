@@ -118,7 +118,8 @@ inline double printed_resolution(std::string_view token) {
   const auto point = mantissa.find('.');
   const int decimals = point == std::string_view::npos ? 0 : static_cast<int>(mantissa.size() - point - 1);
   int exponent = 0;
-  if (e != std::string_view::npos) exponent = static_cast<int>(to_number(token.substr(e + 1)).value_or(0.0));
+  if (e != std::string_view::npos)  // "0d99999": a zero with any exponent is a number; beyond +-400, 10^x is 0 or inf
+    exponent = static_cast<int>(std::clamp(to_number(token.substr(e + 1)).value_or(0.0), -400.0, 400.0));
   return std::pow(10.0, exponent - decimals);
 }
 
@@ -190,10 +191,23 @@ inline void check_kind(std::string_view text, std::string_view name, int line) {
                        " time series; blockdem reads acceleration records");
 }
 
+/// The most samples that lines[first..] can hold (each takes a character and a separator): what is reserved for a
+/// header's count at most (a corrupted NPTS= must not allocate gigabytes before the count check refuses it).
+inline std::size_t max_samples(const std::vector<TextLine>& lines, std::size_t first) {
+  std::size_t bytes = 0;
+  for (std::size_t k = first; k < lines.size(); ++k) bytes += lines[k].text.size() + 1;
+  return bytes / 2;
+}
+
 inline Record finish(Record record, const std::vector<double>& samples, AccelerationUnit unit) {
   const double factor = to_m_s2(unit);
   record.acceleration.resize(samples.size());
-  for (std::size_t i = 0; i < samples.size(); ++i) record.acceleration[i] = factor * samples[i];
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    record.acceleration[i] = factor * samples[i];
+    if (!std::isfinite(record.acceleration[i]))  // 1e308 g: finite as written, not in m/s^2
+      throw InputError(record.name + ": sample " + std::to_string(i + 1) + " = " + show(samples[i]) + " " +
+                       to_string(unit) + " is beyond the range of a double in m/s^2 (|a| <= 1.8e308 m/s^2)");
+  }
   record.input_unit = unit;
   return record;
 }
@@ -238,7 +252,7 @@ inline Record parse_peer_at2(const std::vector<TextLine>& lines, std::string_vie
   check_dt(*dt, name, size_line.number, "DT");
 
   std::vector<double> samples;
-  samples.reserve(static_cast<std::size_t>(*npts));
+  samples.reserve(std::min(static_cast<std::size_t>(*npts), max_samples(lines, 4)));
   for (std::size_t k = 4; k < lines.size(); ++k)
     for (auto token : tokens(lines[k].text, false)) samples.push_back(parse_sample(token, name, lines[k].number));
   const auto expected_count = static_cast<std::size_t>(*npts);
@@ -315,7 +329,7 @@ inline Record parse_esm(const std::vector<TextLine>& lines, std::string_view nam
   const AccelerationUnit unit = require_units(file_unit, options, missing);
 
   std::vector<double> samples;
-  samples.reserve(static_cast<std::size_t>(*n));
+  samples.reserve(std::min(static_cast<std::size_t>(*n), max_samples(lines, k)));
   for (; k < lines.size(); ++k)
     for (auto token : tokens(lines[k].text, false)) samples.push_back(parse_sample(token, name, lines[k].number));
   const auto expected_count = static_cast<std::size_t>(*n);
@@ -401,6 +415,9 @@ inline Record parse_plain(const std::vector<TextLine>& lines, std::string_view n
       continue;
     }
     const auto words = tokens(text, true);
+    if (words.empty())
+      throw InputError(where(name, line.number) + "a line of separators (',' ';') only: expected 1 or 2 numbers or "
+                                                  "column names");
     if (columns == 0 && !header_seen &&
         std::none_of(words.begin(), words.end(), [](std::string_view w) { return to_number(w).has_value(); })) {
       // A line of column names.
