@@ -5,7 +5,7 @@
 //        [--find-collapse] [--json] [--vtk PREFIX]
 //        [--deformable [--max-edge 0.25] [--young 5e9] [--poisson 0.2]] [--target-dt DT]
 //
-// Exit status: 0 on success, 2 on bad input.
+// Exit status: 0 on success, 2 on bad input, 1 if the run left every physical bound (it diverged).
 
 #include <cstdio>
 #include <string>
@@ -72,6 +72,9 @@ int main(int argc, char** argv) {
   } catch (const InvalidArgument& e) {
     std::fprintf(stderr, "arch: error: %s\n", e.what());
     return 2;
+  } catch (const RunawayError& e) {
+    std::fprintf(stderr, "arch: error: %s\n", e.what());
+    return 1;
   }
   return 0;
 }

@@ -63,7 +63,8 @@ struct RunCommand {
     app.add_option("--steel-max-edge", o.steel_max_edge,
                    "deformable: largest tetrahedron edge in the steel frame and the movable piers, m [0.01, 10]")->capture_default_str();
     app.add_option("--record", o.record_path, "acceleration record (PEER .AT2, ESM ASCII, text); default: the built-in synthetic AQA75 stand-in");
-    app.add_option("--units", units, "units of the record's samples: g, m/s2 or cm/s2 (default: from its header)");
+    app.add_option("--units", units, "units of the record's samples: g, m/s2 or cm/s2 (default: from its header)")
+        ->check(CLI::IsMember({"g", "m/s2", "cm/s2"}));
     app.add_option("--axis", axis, "the table moves along x or y (the vault's longitudinal axis)")->capture_default_str();
     app.add_option("--record-level", o.record_level, "the share of the original record that the input represents, % (0, 1000]")->capture_default_str();
     app.add_option("--levels", o.levels, "levels to run one after another, % of the original record, (0, 1000]")
@@ -147,6 +148,7 @@ struct CompareCommand {
 
   int run() const {
     using namespace blockdem;
+    if (std::filesystem::is_directory(measured)) throw InvalidArgument("--measured: '" + measured + "' is a folder, not a CSV file");
     const auto simulated = analysis::read_csv_table(dir + "/history_" + level + ".csv");
     const auto measured_table = analysis::read_csv_table(measured);
     const auto comparisons = analysis::compare_tables(simulated, measured_table);
@@ -288,7 +290,7 @@ int main(int argc, char** argv) {
   app.add_option("--anchor-height", o.anchor_height, "tie anchor blocks on the piers, m (assumed)")->capture_default_str();
   app.add_option("--masonry-density", o.masonry_density, "kg/m^3 (assumed; not in the paper)")->capture_default_str();
   app.add_option("--contact-tolerance", contacts.tolerance, "contact detection tolerance, m")->capture_default_str();
-  app.add_option("--max-cp-area", contacts.max_contact_point_area, "largest area per contact point, m^2 (0: CPs at the corners)")
+  app.add_option("--max-cp-area", contacts.max_contact_point_area, "largest area per contact point, m^2, 0 or >= 1e-4 (0: CPs at the corners)")
       ->capture_default_str();
   if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
   if (compare_app->parsed() || run_app->parsed() || sweep_app->parsed()) {
@@ -317,6 +319,9 @@ int main(int argc, char** argv) {
   }
   try {
     contacts.validate();
+    // A smaller area splits each joint into so many CPs that the check takes hours (1e-4: a second or two).
+    if (contacts.max_contact_point_area != 0 && !(contacts.max_contact_point_area >= 1e-4))
+      throw InvalidArgument(fmt::format("--max-cp-area must be 0 or >= 1e-4 m^2, got {:g}", contacts.max_contact_point_area));
     const auto t0 = std::chrono::steady_clock::now();
     const auto vault = models::make_cross_vault(o);
     const auto model = models::build_rigid_model(vault);

@@ -25,6 +25,7 @@
 
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/units.hpp"
+#include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/json.hpp"
 #include "blockdem/motion/arias.hpp"
 #include "blockdem/motion/baseline.hpp"
@@ -102,16 +103,8 @@ void add_measures(io::JsonObject& json, const Record& record) {
       .add("t90_s", d10_90.end);
 }
 
-std::ofstream open_output(const std::string& path) {
-  std::ofstream out(path);
-  if (!out) throw InvalidArgument("--out: cannot open '" + path + "' for writing");
-  return out;
-}
-
 void write_record(const std::string& path, const Record& record) {
-  auto out = open_output(path);
-  write_record_csv(out, record);
-  if (!out) throw InvalidArgument("--out: writing '" + path + "' failed");
+  io::write_atomically(path, [&](std::ostream& out) { write_record_csv(out, record); });
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -146,9 +139,7 @@ int run_spectrum(const Input& input, double damping, std::vector<double> periods
     fmt::print("{}", csv.str());
     return 0;
   }
-  auto out = open_output(out_path);
-  write_spectrum_csv(out, spectrum, record);
-  if (!out) throw InvalidArgument("--out: writing '" + out_path + "' failed");
+  io::write_atomically(out_path, [&](std::ostream& out) { write_spectrum_csv(out, spectrum, record); });
   std::size_t peak_psa = 0, peak_psv = 0;
   for (std::size_t j = 0; j < spectrum.period.size(); ++j) {
     if (spectrum.psa[j] > spectrum.psa[peak_psa]) peak_psa = j;
@@ -196,6 +187,9 @@ int run_truncate(const Input& input, TruncateOptions o) {
     if (!o.start || !o.end) throw InvalidArgument("--method window needs --start and --end (s)");
     cut = truncate_window(record, *o.start, *o.end);
   } else if (o.method == "arias") {
+    if (!(o.arias_range[0] >= 0 && o.arias_range[0] < o.arias_range[1] && o.arias_range[1] <= 1))
+      throw InvalidArgument(fmt::format("--arias-range must satisfy 0 <= lower < upper <= 1, got {:g} {:g}", o.arias_range[0],
+                                        o.arias_range[1]));
     cut = truncate_arias(record, o.arias_range[0], o.arias_range[1]);
     json.add("arias_range", std::span<const double>(o.arias_range));
   } else {
@@ -232,14 +226,14 @@ int run_truncate(const Input& input, TruncateOptions o) {
         .add("feasible_candidates", fit.feasible_candidates)
         .add("search_seconds", seconds);
     if (!o.pulse_out.empty()) {
-      auto out = open_output(o.pulse_out);
       const auto velocity = integrate(record).velocity;
-      write_provenance(out, record);
-      out << "# fitted M&P pulse (eq. 31) against the record's velocity\n"
-          << "time_s,record_velocity_m_s,pulse_velocity_m_s\n";
-      for (std::size_t i = 0; i < record.size(); ++i)
-        out << fmt::format("{:.9g},{:.9g},{:.9g}\n", record.time(i), velocity[i], fit.pulse.velocity(record.time(i)));
-      if (!out) throw InvalidArgument("--pulse-out: writing '" + o.pulse_out + "' failed");
+      io::write_atomically(o.pulse_out, [&](std::ostream& out) {
+        write_provenance(out, record);
+        out << "# fitted M&P pulse (eq. 31) against the record's velocity\n"
+            << "time_s,record_velocity_m_s,pulse_velocity_m_s\n";
+        for (std::size_t i = 0; i < record.size(); ++i)
+          out << fmt::format("{:.9g},{:.9g},{:.9g}\n", record.time(i), velocity[i], fit.pulse.velocity(record.time(i)));
+      });
       json.add("pulse_out", o.pulse_out);
     }
   }
@@ -263,6 +257,11 @@ struct ProcessOptions {
 };
 
 int run_process(const Input& input, const ProcessOptions& o) {
+  // Bounds far beyond any record, that keep its measures finite (a factor of 1e308 leaves none).
+  if (o.scale && !(*o.scale >= -1000 && *o.scale <= 1000 && *o.scale != 0))
+    throw InvalidArgument(fmt::format("--scale must be in [-1000, 1000] and not 0, got {:g}", *o.scale));
+  if (o.target_pga && !(*o.target_pga > 0 && *o.target_pga <= 20 * standard_gravity))
+    throw InvalidArgument(fmt::format("--target-pga must be in (0, {:g}] m/s^2 (20 g), got {:g}", 20 * standard_gravity, *o.target_pga));
   const auto steps = parse_baseline(o.baseline);
   auto record = input.read();
   if (o.resample_dt) record = resample(std::move(record), *o.resample_dt);

@@ -11,13 +11,13 @@
 // input, with a message naming the option and its allowed range.
 
 #include <cstdio>
-#include <fstream>
 #include <string>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "blockdem/analysis/joint_test.hpp"
+#include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/json.hpp"
 #include "cli.hpp"
 
@@ -26,18 +26,17 @@ namespace {
 using namespace blockdem;
 
 void write_csv(const std::string& path, const analysis::JointTestOptions& o, const analysis::JointTestResult& r) {
-  std::ofstream out(path);
-  if (!out) throw InvalidArgument("--csv: cannot open '" + path + "' for writing");
-  out << fmt::format("# joint_test path={} area_m2={} normal_stress_pa={} amplitude_m={}\n", analysis::to_string(o.path),
-                     o.area, o.normal_stress, r.amplitude);
-  out << "step,opening_m,slip_m,normal_stress_pa,shear_stress_pa,normal_force_n,shear_force_n,damage,dissipated_j_m2,"
-         "stored_j_m2\n";
-  for (std::size_t k = 0; k < r.samples.size(); ++k) {
-    const auto& s = r.samples[k];
-    out << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", k, s.opening, s.slip, s.normal_stress, s.shear_stress,
-                       o.area * s.normal_stress, o.area * s.shear_stress, s.damage, s.dissipated, s.stored);
-  }
-  if (!out) throw InvalidArgument("--csv: writing '" + path + "' failed");
+  io::write_atomically(path, [&](std::ostream& out) {
+    out << fmt::format("# joint_test path={} area_m2={} normal_stress_pa={} amplitude_m={}\n", analysis::to_string(o.path),
+                       o.area, o.normal_stress, r.amplitude);
+    out << "step,opening_m,slip_m,normal_stress_pa,shear_stress_pa,normal_force_n,shear_force_n,damage,dissipated_j_m2,"
+           "stored_j_m2\n";
+    for (std::size_t k = 0; k < r.samples.size(); ++k) {
+      const auto& s = r.samples[k];
+      out << fmt::format("{},{},{},{},{},{},{},{},{},{}\n", k, s.opening, s.slip, s.normal_stress, s.shear_stress,
+                         o.area * s.normal_stress, o.area * s.shear_stress, s.damage, s.dissipated, s.stored);
+    }
+  });
 }
 
 }  // namespace

@@ -10,7 +10,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -22,6 +21,7 @@
 #include "blockdem/damping/mass_proportional.hpp"
 #include "blockdem/damping/maxwell_fit.hpp"
 #include "blockdem/damping/rayleigh.hpp"
+#include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/json.hpp"
 #include "cli.hpp"
 
@@ -100,23 +100,22 @@ void print_3dec(const MaxwellFitResult& fit) {
 /// Frequency, target, Maxwell, mass-proportional and Rayleigh damping ratios and |M_T| over a decade beyond the band.
 void write_curve(const std::string& path, const MaxwellFitResult& fit, const damping::MaxwellFitOptions& options,
                  double mass_centre_hz, const std::vector<double>& rayleigh_hz) {
-  std::ofstream out(path);
-  if (!out) throw InvalidArgument("--curve: cannot open '" + path + "' for writing");
   const auto mass = damping::MassProportional::from_damping_ratio(fit.target, mass_centre_hz);
   const auto rayleigh =
       damping::Rayleigh::from_two_frequencies(fit.target, rayleigh_hz[0], fit.target, rayleigh_hz[1]);
-  out << "frequency_hz,target,maxwell,mass_proportional,rayleigh,modulus\n";
-  const double lo = std::log(options.lower_hz / 10.0);
-  const double hi = std::log(options.upper_hz * 10.0);
-  constexpr int n = 400;
-  for (int j = 0; j <= n; ++j) {
-    const double f = std::exp(lo + (hi - lo) * j / n);
-    const double w = angular_frequency(f);
-    const auto m = damping::complex_modulus(fit.active(), w);
-    out << fmt::format("{},{},{},{},{},{}\n", f, fit.target, m.damping_ratio(), mass.damping_ratio(w),
-                       rayleigh.damping_ratio(w), m.magnitude());
-  }
-  if (!out) throw InvalidArgument("--curve: writing '" + path + "' failed");
+  io::write_atomically(path, [&](std::ostream& out) {
+    out << "frequency_hz,target,maxwell,mass_proportional,rayleigh,modulus\n";
+    const double lo = std::log(options.lower_hz / 10.0);
+    const double hi = std::log(options.upper_hz * 10.0);
+    constexpr int n = 400;
+    for (int j = 0; j <= n; ++j) {
+      const double f = std::exp(lo + (hi - lo) * j / n);
+      const double w = angular_frequency(f);
+      const auto m = damping::complex_modulus(fit.active(), w);
+      out << fmt::format("{},{},{},{},{},{}\n", f, fit.target, m.damping_ratio(), mass.damping_ratio(w),
+                         rayleigh.damping_ratio(w), m.magnitude());
+    }
+  });
 }
 
 }  // namespace

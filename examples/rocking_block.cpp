@@ -6,16 +6,17 @@
 //                 [--duration 2] [--friction-angle 45] [--out rotation.csv] [--json]
 //                 [--deformable [--max-edge 0.25] [--young 10e9] [--poisson 0.2]] [--target-dt DT]
 //
-// FILE has two columns, time (s) and acceleration (m/s^2, or g with --in-g). Exit status 2 on bad input.
+// FILE has two columns, time (s) and acceleration (m/s^2, or g with --in-g). Exit status 2 on bad input, 1 if the run
+// left every physical bound (it diverged, or the block was thrown off).
 
 #include <cstdio>
-#include <fstream>
 #include <string>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 #include "blockdem/analysis/rocking.hpp"
+#include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/columns.hpp"
 #include "blockdem/io/json.hpp"
 #include "blockdem/motion/acceleration_unit.hpp"
@@ -37,7 +38,7 @@ int main(int argc, char** argv) {
   app.add_option("--friction-angle", o.friction_angle_deg, "degrees, (0, 89]")->capture_default_str();
   app.add_option("--normal-stiffness", o.normal_stiffness, "joint normal (and shear) stiffness, Pa/m")->capture_default_str();
   app.add_option("--duration", o.duration, "simulated time, s")->capture_default_str();
-  auto* constant_option = app.add_option("--constant-acceleration", constant, "constant base acceleration along x, m/s^2");
+  auto* constant_option = app.add_option("--constant-acceleration", constant, "constant base acceleration along x, m/s^2, [-100, 100]");
   auto* history_option = app.add_option("--history", history, "two-column file: time (s), base acceleration");
   constant_option->excludes(history_option);
   app.add_flag("--in-g", in_g, "the history's accelerations are in g");
@@ -46,6 +47,9 @@ int main(int argc, char** argv) {
   programs::add_deformable_options(app, o, "the block");
   if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
   try {
+    o.validate();  // first: the ramp below would refuse a bad --duration without naming it
+    if (!(constant >= -100 && constant <= 100))
+      throw InvalidArgument(fmt::format("--constant-acceleration must be in [-100, 100] m/s^2 (about 10 g), got {:g}", constant));
     if (!history.empty()) {
       const auto columns = io::read_two_columns(history);
       const auto unit = in_g ? motion::AccelerationUnit::g : motion::AccelerationUnit::m_s2;
@@ -58,10 +62,10 @@ int main(int argc, char** argv) {
     }
     const auto r = analysis::analyse_rocking(o);
     if (!out_path.empty()) {
-      std::ofstream out(out_path);
-      if (!out) throw InvalidArgument("--out: cannot open '" + out_path + "' for writing");
-      out << "time_s,rotation_rad,base_acceleration_m_s2\n";
-      for (std::size_t k = 0; k < r.time.size(); ++k) out << fmt::format("{},{},{}\n", r.time[k], r.rotation[k], r.base_acceleration[k]);
+      io::write_atomically(out_path, [&](std::ostream& out) {
+        out << "time_s,rotation_rad,base_acceleration_m_s2\n";
+        for (std::size_t k = 0; k < r.time.size(); ++k) out << fmt::format("{},{},{}\n", r.time[k], r.rotation[k], r.base_acceleration[k]);
+      });
     }
     if (json) {
       io::JsonObject j;
@@ -85,6 +89,9 @@ int main(int argc, char** argv) {
   } catch (const InputError& e) {
     std::fprintf(stderr, "rocking_block: error: %s\n", e.what());
     return 2;
+  } catch (const RunawayError& e) {
+    std::fprintf(stderr, "rocking_block: error: %s\n", e.what());
+    return 1;
   }
   return 0;
 }

@@ -4,6 +4,7 @@
 // analysis/sweep_run.hpp and parallel/.
 
 #include <cstdio>
+#include <filesystem>
 #include <set>
 #include <string>
 #include <vector>
@@ -39,8 +40,7 @@ struct SweepCommand {
     base.out->description("the sweep's folder: cases/<id>/ per case, summary.csv and summary.json")->default_str("vault_sweep");
     sweep.add_option("spec", spec, "the sweep file (JSON: damping schemes and their grids, records, levels or intensity targets, "
                                  "kinematics; see analysis/sweep_file.hpp)")->required();
-    sweep.add_option("--case", single_case, "run only case K of the expansion (0-based, see --list), e.g. as one task of a job array")
-        ->check(CLI::NonNegativeNumber);
+    sweep.add_option("--case", single_case, "run only case K of the expansion (0-based, see --list), e.g. as one task of a job array");
     sweep.add_flag("--list", list, "print the cases (index and id) and stop");
     sweep.add_flag("--summarize", summarize, "write the summary from the case folders as they are, running nothing");
   }
@@ -110,10 +110,13 @@ inline int run_sweep_command(SweepCommand& command, int argc, char** argv) {
     return 0;
   }
   stop_on_interrupt();
-  if (command.single_case >= 0) {
-    if (static_cast<std::size_t>(command.single_case) >= cases.size())
+  if (command.app->count("--case") > 0) {
+    if (command.single_case < 0 || static_cast<std::size_t>(command.single_case) >= cases.size())
       throw InvalidArgument("--case must be in [0, " + std::to_string(cases.size() - 1) + "] (the sweep has " +
                             std::to_string(cases.size()) + " cases), got " + std::to_string(command.single_case));
+    std::error_code error;  // as run_sweep: a folder that cannot be made is bad input, not a failed case
+    std::filesystem::create_directories(run.out_dir + "/cases", error);
+    if (error) throw InvalidArgument("--out: cannot create the sweep folder '" + run.out_dir + "': " + error.message());
     const auto row = analysis::run_sweep_case(cases[static_cast<std::size_t>(command.single_case)], run);
     print_sweep_rows({row});
     return row.status == analysis::CaseStatus::done ? 0 : 1;

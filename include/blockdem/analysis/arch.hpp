@@ -41,12 +41,13 @@ struct ArchOptions : DeformableOptions {
     };
     check(voussoirs >= 2 && voussoirs <= 2000, "voussoirs must be in 2..2000");
     check(thickness_ratio > 0 && thickness_ratio < 1, "thickness ratio t/R must be in (0, 1)");
-    check(radius > 0, "radius must be > 0 m");
-    check(depth > 0, "depth must be > 0 m");
+    check(radius > 0 && radius <= 1000, "radius must be in (0, 1000] m");
+    check(depth > 0 && depth <= 1000, "depth must be in (0, 1000] m");
     check(friction_angle_deg > 0 && friction_angle_deg <= 89, "friction angle must be in (0, 89] degrees");
     check(lambda >= 0 && lambda <= 10, "lambda must be in [0, 10]");
-    check(density > 0, "density must be > 0 kg/m^3");
-    check(normal_stiffness > 0, "normal stiffness must be > 0 Pa/m");
+    check(density >= 1 && density <= 1e5, "density must be in [1, 1e5] kg/m^3");
+    // Beyond these the timestep and the joint's overlap leave the range where the run means anything (it diverges).
+    check(normal_stiffness >= 1e6 && normal_stiffness <= 1e15, "normal stiffness must be in [1e6, 1e15] Pa/m");
     check(max_steps >= 100, "max steps must be >= 100");
   }
 };

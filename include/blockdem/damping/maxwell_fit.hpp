@@ -67,6 +67,8 @@ struct MaxwellFitOptions {
     if (!(damping_ratio > 0.0 && damping_ratio < 0.5)) fail("damping ratio (zeta) must be in (0, 0.5)");
     if (!(lower_hz > 0.0) || !cmath::isfinite(lower_hz)) fail("band lower frequency f_lb must be > 0 Hz");
     if (!(upper_hz > lower_hz) || !cmath::isfinite(upper_hz)) fail("band must satisfy f_lb < f_ub (Hz)");
+    if (!(lower_hz >= 1e-3 && upper_hz <= 1e4)) fail("band must lie within [0.001, 10000] Hz");
+    if (!(upper_hz <= 1e6 * lower_hz)) fail("band must span at most 6 decades (f_ub <= 1e6 f_lb)");
     if (branches < 1 || branches > max_maxwell_branches) fail("branches (N) must be in 1..8");
     if (!(centre_margin >= 1.0 && centre_margin <= 100.0)) fail("centre margin must be in [1, 100]");
     if (points < 10 || points > 100000) fail("points (M) must be in 10..100000");
@@ -209,7 +211,7 @@ class MaxwellFitProblem {
 
   // With d_r = 1 + x_r^2, x_r = tau_r w and e_r = prod_{k != r} d_k, multiplying M_T by P = prod d_k removes the N
   // divisions of eq. 19: Re' = P + sum alpha_r x_r^2 e_r, Im' = sum alpha_r x_r e_r, zeta = Im' / (2 Re').
-  // P <= (1 + x_max^2)^8 stays far below the overflow for the bands validate() allows.
+  // P <= (1 + x_max^2)^8 stays far below the overflow for the bands validate() allows (6 decades within 1e-3..1e4 Hz).
   constexpr double residual(const State& s, int j) const {
     const Row row = evaluate_row(s, j);
     return 0.5 * row.im / row.re - target_;

@@ -3,6 +3,7 @@
 // of words is skipped. Errors name the file and the line.
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -19,6 +20,7 @@ struct TwoColumns {
 };
 
 inline TwoColumns read_two_columns(const std::string& path) {
+  if (std::filesystem::is_directory(path)) throw InputError(path + ": is a directory, not a file of two columns");
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open the file");
   TwoColumns data;

@@ -218,6 +218,10 @@ struct CrossVaultOptions {
                                    detail::num(half_plan()) + " m: enlarge the plan or thin the ring");
     }
     check(course_height() < 0.25 * span, "unit height + joint must be < span/4 m");
+    // Smaller bricks make millions of blocks (0.02 m: 37 000 blocks, built and checked in about a second).
+    check(course_height() >= 0.02 && block_length() >= 0.02,
+          "unit height + joint and unit length + joint must be >= 0.02 m, got " + detail::num(course_height()) + " and " +
+              detail::num(block_length()));
     check(infill_rise_fraction >= 0 && infill_rise_fraction < 1, "infill rise fraction must be in [0, 1), got " + detail::num(infill_rise_fraction));
     check(min_block_fraction >= 0 && min_block_fraction < 0.5, "min block fraction must be in [0, 0.5), got " + detail::num(min_block_fraction));
     check(min_infill_fraction >= 0 && min_infill_fraction < 1, "min infill fraction must be in [0, 1), got " + detail::num(min_infill_fraction));

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
@@ -41,6 +42,13 @@ inline Record resample(Record record, double dt) {
   if (dt > 0.5 * record.duration())
     throw InvalidArgument("resample: the new time step " + std::to_string(dt) + " s leaves fewer than 3 samples of " +
                           record.name);
+  // A step far below the record's would make more samples than memory holds (std::bad_alloc).
+  if (const double samples = std::floor(record.duration() / dt * (1.0 + 1e-12)) + 1; !(samples <= 1e8)) {
+    char text[160];
+    std::snprintf(text, sizeof text, "resample: the new time step %g s makes %.3g samples (more than 1e8: the step must "
+                  "be >= %g s) of ", dt, samples, record.duration() / 1e8);
+    throw InvalidArgument(text + record.name);
+  }
   std::vector<double> source = record.acceleration;
   if (dt > record.dt * (1.0 + 1e-12)) {
     const ButterworthFilter antialias(FilterType::lowpass, 8, 0.8 * 0.5 / dt, record.dt);

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <optional>
 #include <string>
@@ -130,6 +131,14 @@ struct WaveletTruncationOptions {
     if (phase_samples < 1 || phase_samples > 3600)
       throw InvalidArgument("wavelet truncation: phase samples " + std::to_string(phase_samples) +
                             " is outside 1..3600");
+    // Each candidate of the grid is a pulse to evaluate: the default grid has 3.6e5 (under a second), 1e7 some seconds.
+    const double candidates = static_cast<double>(gamma.samples) * (t0 ? t0->samples : 100) * phase_samples;
+    if (candidates > 1e7) {
+      char text[160];
+      std::snprintf(text, sizeof text, "wavelet truncation: the grid has %.3g candidates (gamma samples x t0 samples x "
+                    "phase samples), at most 1e7", candidates);
+      throw InvalidArgument(text);
+    }
     for (auto bound : {max_velocity, max_acceleration, max_displacement})
       if (bound && !(*bound > 0.0))
         throw InvalidArgument("wavelet truncation: peak constraints must be > 0");
