@@ -18,8 +18,6 @@
 #include <system_error>
 #include <vector>
 
-#include <unistd.h>
-
 #include "blockdem/analysis/vault_checkpoint.hpp"
 #include "blockdem/analysis/vault_recorders.hpp"
 #include "blockdem/analysis/vault_report.hpp"
@@ -34,26 +32,11 @@
 #include "blockdem/io/checkpoint.hpp"
 #include "blockdem/motion/base_motion.hpp"
 
+#include "scratch.hpp"
+
 namespace {
 
 using namespace blockdem;
-
-/// Where the input is written for a reader that takes a path: $TMPDIR, else /dev/shm (memory: a disk-backed /tmp
-/// costs more than the reader), else /tmp.
-std::string scratch_dir() {
-  if (const char* tmp = std::getenv("TMPDIR"); tmp && *tmp) return tmp;
-  std::error_code error;
-  return std::filesystem::is_directory("/dev/shm", error) ? "/dev/shm" : "/tmp";
-}
-
-/// A file or folder of this process under scratch_dir(), removed when the fuzzer exits.
-struct Scratch {
-  std::string path;
-  ~Scratch() {
-    std::error_code error;
-    std::filesystem::remove_all(path, error);
-  }
-};
 
 [[noreturn]] void finding(const std::string& what) {
   std::fprintf(stderr, "fuzz_checkpoint: %s\n", what.c_str());
@@ -164,7 +147,7 @@ void read_file(const std::string& bytes) {
     finding("the header reader left the stream at " + std::to_string(in.tellg()) + ", not at the payload (" +
             std::to_string(h.payload_offset) + ")");
 
-  static const Scratch file{scratch_dir() + "/blockdem_fuzz_checkpoint_" + std::to_string(getpid()) + ".ckpt"};
+  static const fuzz::Scratch file{"blockdem_fuzz_checkpoint_", ".ckpt"};
   const std::string& path = file.path;
   {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);

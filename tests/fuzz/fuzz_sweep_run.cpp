@@ -10,34 +10,17 @@
 #include <string>
 #include <system_error>
 
-#include <unistd.h>
-
 #include "blockdem/analysis/sweep_run.hpp"
 #include "blockdem/core/error.hpp"
+
+#include "scratch.hpp"
 
 namespace {
 
 using namespace blockdem;
 
-/// Where the input is written for a reader that takes a path: $TMPDIR, else /dev/shm (memory: a disk-backed /tmp
-/// costs more than the reader), else /tmp.
-std::string scratch_dir() {
-  if (const char* tmp = std::getenv("TMPDIR"); tmp && *tmp) return tmp;
-  std::error_code error;
-  return std::filesystem::is_directory("/dev/shm", error) ? "/dev/shm" : "/tmp";
-}
-
-/// A file or folder of this process under scratch_dir(), removed when the fuzzer exits.
-struct Scratch {
-  std::string path;
-  ~Scratch() {
-    std::error_code error;
-    std::filesystem::remove_all(path, error);
-  }
-};
-
 const std::string& case_dir() {
-  static const Scratch dir{scratch_dir() + "/blockdem_fuzz_sweep_run_" + std::to_string(getpid())};
+  static const fuzz::Scratch dir{"blockdem_fuzz_sweep_run_"};
   [[maybe_unused]] static const bool created = std::filesystem::create_directories(dir.path);
   return dir.path;
 }

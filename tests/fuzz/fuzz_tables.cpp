@@ -6,17 +6,15 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <string>
 #include <system_error>
 #include <vector>
 
-#include <unistd.h>
-
 #include "blockdem/analysis/error_metrics.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/io/columns.hpp"
+
+#include "scratch.hpp"
 
 namespace {
 
@@ -39,28 +37,9 @@ const analysis::Table& simulated() {
   return table;
 }
 
-/// Where the input is written for a reader that takes a path: $TMPDIR, else /dev/shm (memory: a disk-backed /tmp
-/// costs more than the reader), else /tmp.
-std::string scratch_dir() {
-  if (const char* tmp = std::getenv("TMPDIR"); tmp && *tmp) return tmp;
-  std::error_code error;
-  return std::filesystem::is_directory("/dev/shm", error) ? "/dev/shm" : "/tmp";
-}
-
-/// A file or folder of this process under scratch_dir(), removed when the fuzzer exits.
-struct Scratch {
-  std::string path;
-  ~Scratch() {
-    std::error_code error;
-    std::filesystem::remove_all(path, error);
-  }
-};
-
-std::string write_file(const std::uint8_t* data, std::size_t size) {
-  static const Scratch file{scratch_dir() + "/blockdem_fuzz_table_" + std::to_string(getpid()) + ".csv"};
-  std::ofstream out(file.path, std::ios::binary | std::ios::trunc);
-  out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
-  return file.path;
+const std::string& write_file(const std::uint8_t* data, std::size_t size) {
+  static const fuzz::Scratch file{"blockdem_fuzz_table_", ".csv"};
+  return fuzz::write_scratch(file, data, size);
 }
 
 }  // namespace
