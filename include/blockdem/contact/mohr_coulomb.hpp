@@ -58,22 +58,31 @@ struct MohrCoulomb {
   };
 
   static Response update(const Parameters& p, History& h, double du_normal, Shear du_shear) noexcept {
+    const double normal_before = h.normal;
     h.gap += du_normal;
-    bool failed = h.failed != 0;
+    const bool failed_before = h.failed != 0;
+    bool failed = failed_before;
     const double tension = failed ? p.residual_tensile_strength : p.tensile_strength;
-    double sigma = -p.normal_stiffness * h.gap;
+    const double elastic = -p.normal_stiffness * h.gap;
+    double sigma = elastic;
     if (sigma < -tension) {  // tension cut-off
       if (!failed && p.tensile_strength > 0) failed = true;
       sigma = -(failed ? p.residual_tensile_strength : tension);
     }
     h.normal = sigma;
+    // Where the tensile strength drops to the residual one (the bond breaks in tension now, or broke in shear at the
+    // last step while the joint carried more tension than the residual strength): the energy the normal spring loses
+    // at its present gap (normal_energy), released by no force. Once per failure, never negative.
+    double dissipated = 0.0;
+    if (failed && (!failed_before || normal_before < -p.residual_tensile_strength))
+      dissipated = normal_energy(p, elastic > -p.tensile_strength ? elastic : -p.tensile_strength, h.gap) -
+                   normal_energy(p, sigma, h.gap);
     Shear tau{h.shear[0] - p.shear_stiffness * du_shear[0], h.shear[1] - p.shear_stiffness * du_shear[1]};
     // Comparisons, not std::fmax: GCC calls libm for fmax (its NaN rules), one call per CP-step in the hot loop.
     const double compression = sigma > 0.0 ? sigma : 0.0;
     const double strength = (failed ? p.residual_cohesion : p.cohesion) + compression * (failed ? p.tan_residual_friction : p.tan_friction);
     const double limit = strength > 0.0 ? strength : 0.0;
     const double magnitude2 = tau[0] * tau[0] + tau[1] * tau[1];
-    double dissipated = 0.0;
     const bool slipping = magnitude2 > limit * limit;  // no square root unless it slips
     if (slipping) {  // slip: return to the Coulomb limit along the trial direction
       const double magnitude = std::sqrt(magnitude2);
@@ -85,7 +94,7 @@ struct MohrCoulomb {
       const double work = -0.5 * ((h.shear[0] + tau[0]) * du_shear[0] + (h.shear[1] + tau[1]) * du_shear[1]);
       const double stored_change = 0.5 * (tau[0] * tau[0] + tau[1] * tau[1] - h.shear[0] * h.shear[0] - h.shear[1] * h.shear[1]) /
                                    p.shear_stiffness;
-      dissipated = work - stored_change;
+      dissipated += work - stored_change;
       if (p.cohesion > 0 || p.tensile_strength > 0) failed = true;
     }
     h.shear = tau;
@@ -102,8 +111,13 @@ struct MohrCoulomb {
     return h.failed == 0 && h.slipping == 0 && (h.gap <= 0 || p.tensile_strength > 0);
   }
   static constexpr double stored_energy(const Parameters& p, const History& h) noexcept {
-    return 0.5 * h.normal * h.normal / p.normal_stiffness +
-           0.5 * (h.shear[0] * h.shear[0] + h.shear[1] * h.shear[1]) / p.shear_stiffness;
+    return normal_energy(p, h.normal, h.gap) + 0.5 * (h.shear[0] * h.shear[0] + h.shear[1] * h.shear[1]) / p.shear_stiffness;
+  }
+  /// The normal spring's energy (J/m^2) at stress sigma and gap: 1/2 sigma^2 / k_n while elastic (sigma = -k_n gap);
+  /// at the cut-off, opened past it at sigma = -T, that plus T times the opening beyond T / k_n, which closing gives
+  /// back (the stress follows the total gap): -sigma gap - 1/2 sigma^2 / k_n in both cases.
+  static constexpr double normal_energy(const Parameters& p, double sigma, double gap) noexcept {
+    return -sigma * gap - 0.5 * sigma * sigma / p.normal_stiffness;
   }
   static constexpr Traction traction(const Parameters&, const History& h) noexcept {
     return {h.normal, h.shear[0], h.shear[1]};

@@ -121,10 +121,14 @@ void gather_resultants(model::Model& m, BlockState& state, const Groups& groups,
     }
     const model::Motion motion = b.motion[i];
     if (motion == model::Motion::free) force += b.mass[i] * gravity;
+    // The move that led to x_n, against the mean of the forces at x_(n-1) and x_n (b.force, still the last step's):
+    // the work the leapfrog's energy 1/2 m v(n-1/2).v(n+1/2) + U(x_n) sees. The force at x_n alone is off by
+    // dt/2 times the integral of F.a, which does not shrink over a record: 1 J of 1.1 in a 2.5 g sine.
+    if (motion == model::Motion::base && move)
+      state.base_work[i] -= 0.5 * (force + b.force[i]).dot(b.velocity[i]) * increment_dt;
     b.force[i] = force;
     b.moment[i] = moment;
     if (motion == model::Motion::base && move) {
-      state.base_work[i] -= force.dot(b.velocity[i]) * increment_dt;  // the move that led to x_n, against `force`
       b.velocity[i] = base_velocity;
       b.angular_velocity[i].setZero();
       b.position[i] += dt * base_velocity;

@@ -266,8 +266,12 @@ class DeformableState {
                                     g.slip_dissipation[k], g.viscous_dissipation[k], e.elastic, e.slip, e.viscous);
     });
     for (std::size_t t = 0; t < m.deformable.trusses.size(); ++t) {
+      // At the positions of the last force evaluation (truss_pass), as the contacts' and elements' energies: the ends
+      // have moved on by a step since, and the energy there is a step ahead of the balance's other terms.
       const auto& tr = m.deformable.trusses[t];
-      const double stretch = (m.end_position(tr.end[1]) - m.end_position(tr.end[0])).norm() - tr.length0;
+      const Vec3 d = m.end_position(tr.end[1]) - m.end_position(tr.end[0]);
+      const double axial = truss_force[t].dot(d) >= 0 ? truss_force[t].norm() : -truss_force[t].norm();
+      const double stretch = (axial - tr.pretension) / tr.axial_stiffness();
       e.elastic += tr.pretension * stretch + 0.5 * tr.axial_stiffness() * stretch * stretch;
     }
     return e;
