@@ -13,6 +13,7 @@
 #include <string>
 
 #include "blockdem/analysis/sweep_run.hpp"
+#include "../file_contents.hpp"
 #include "../threads.hpp"
 
 using namespace blockdem;
@@ -29,13 +30,6 @@ VaultStudyOptions short_coarse_study() {
   o.window_start = 2.0;
   o.window_end = 2.1;
   return o;
-}
-
-std::string contents(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 /// summary.csv without its last column, the wall time.
@@ -84,20 +78,20 @@ TEST_CASE("sweep run: cases that fail are recorded, the others complete; a secon
   for (const auto& r : rows) CHECK_FALSE(r.skipped);
 
   // The summary: a header and a row per case, in case order; a finished case has its peaks, a failed one none.
-  const std::string summary = contents(dir / "summary.csv");
+  const std::string summary = test::file_contents(dir / "summary.csv");
   CHECK(summary.rfind(std::string(summary_header) + "\n", 0) == 0);
   CHECK(std::count(summary.begin(), summary.end(), '\n') == 5);
   CHECK(summary.find("\n0,rigid_aqa75_none,done,,rigid,aqa75,none,") != std::string::npos);
   CHECK(summary.find("\n3,rigid_record_mass_z0.04_f7.5,failed,") != std::string::npos);
-  CHECK(contents(dir / "summary.json").find("\"failed\": 2") != std::string::npos);
+  CHECK(test::file_contents(dir / "summary.json").find("\"failed\": 2") != std::string::npos);
 
   // The sweep's case is the vault study run by itself, byte for byte.
   auto alone = cases[1].options;
   alone.out_dir = (dir / "alone").string();
   run_vault_study(alone);
-  const auto history = contents(dir / "cases" / cases[1].id / "history_25.csv");
+  const auto history = test::file_contents(dir / "cases" / cases[1].id / "history_25.csv");
   CHECK(history.size() > 1000);
-  CHECK(history == contents(dir / "alone" / "history_25.csv"));
+  CHECK(history == test::file_contents(dir / "alone" / "history_25.csv"));
 
   // Again: the finished cases are skipped and their files left as they were; the failed ones run again.
   const auto written = std::filesystem::last_write_time(dir / "cases" / cases[0].id / "history_25.csv");
@@ -109,7 +103,7 @@ TEST_CASE("sweep run: cases that fail are recorded, the others complete; a secon
   CHECK(again[2].status == CaseStatus::failed);
   CHECK(again[0].csv == rows[0].csv);
   CHECK(std::filesystem::last_write_time(dir / "cases" / cases[0].id / "history_25.csv") == written);
-  CHECK(without_wall_times(contents(dir / "summary.csv")) == without_wall_times(summary));  // the failed ones took their time again
+  CHECK(without_wall_times(test::file_contents(dir / "summary.csv")) == without_wall_times(summary));  // the failed ones took their time again
 
   // Under other base options (another fingerprint) nothing is taken as finished.
   run.fingerprint = "other";

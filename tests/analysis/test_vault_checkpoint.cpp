@@ -10,6 +10,7 @@
 #include <string>
 
 #include "blockdem/analysis/vault_study.hpp"
+#include "../file_contents.hpp"
 #include "../threads.hpp"
 
 using namespace blockdem;
@@ -32,13 +33,6 @@ analysis::VaultStudyOptions two_levels(const std::filesystem::path& dir) {
   o.snapshots_every = 0.05;
   o.out_dir = dir.string();
   return o;
-}
-
-std::string contents(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 std::string refusal(const analysis::VaultStudyOptions& o) {
@@ -67,7 +61,7 @@ TEST_CASE("vault study: a run stopped inside a level and resumed from its checkp
   const auto part1 = analysis::run_vault_study(o);
   CHECK(part1.interrupted);
   CHECK(part1.levels.size() == 1);  // the level in progress, as far as it went
-  CHECK(contents(base / "split" / "report.json").find("\"complete\": false") != std::string::npos);
+  CHECK(test::file_contents(base / "split" / "report.json").find("\"complete\": false") != std::string::npos);
   // The history of a level not finished is not under its own name, which only a whole level's history takes.
   CHECK_FALSE(std::filesystem::exists(base / "split" / "history_25.csv"));
   CHECK(std::filesystem::exists(base / "split" / "history_25.csv.part"));
@@ -82,7 +76,7 @@ TEST_CASE("vault study: a run stopped inside a level and resumed from its checkp
 
   for (const char* name : {"history_25.csv", "history_50.csv", "contacts_25.csv", "contacts_50.csv", "damage_50.vtu",
                            "snapshots.pvd", "snapshots/level50_1.vtu"}) {
-    const auto a = contents(base / "whole" / name), b = contents(base / "split" / name);
+    const auto a = test::file_contents(base / "whole" / name), b = test::file_contents(base / "split" / name);
     CHECK_MESSAGE(!a.empty(), name);
     CHECK_MESSAGE(a == b, name);
   }
@@ -96,7 +90,7 @@ TEST_CASE("vault study: a run stopped inside a level and resumed from its checkp
     }
   }
   CHECK(resumed.settling.steps == whole.settling.steps);
-  CHECK(contents(base / "split" / "report.json").find("\"complete\": true") != std::string::npos);
+  CHECK(test::file_contents(base / "split" / "report.json").find("\"complete\": true") != std::string::npos);
   for (const auto& entry : std::filesystem::recursive_directory_iterator(base / "split"))
     CHECK_MESSAGE(entry.path().extension() != ".part", entry.path().string());
   std::filesystem::remove_all(base);
@@ -111,9 +105,9 @@ TEST_CASE("vault study: a truncated, corrupted or foreign checkpoint is refused,
   o.window_end = 2.05;
   analysis::run_vault_study(o);
   const auto checkpoint = base / "run" / analysis::study_checkpoint_file;
-  const std::string good = contents(checkpoint);
+  const std::string good = test::file_contents(checkpoint);
   REQUIRE(good.size() > 1000);
-  const std::string report = contents(base / "run" / "report.json");
+  const std::string report = test::file_contents(base / "run" / "report.json");
 
   auto with_file = [&](const std::string& bytes, auto change) {
     const auto path = base / "other.bin";
@@ -137,8 +131,8 @@ TEST_CASE("vault study: a truncated, corrupted or foreign checkpoint is refused,
   missing.resume = (base / "none.bin").string();
   CHECK(refusal(missing).find("none.bin") != std::string::npos);
   // The run the checkpoint belongs to is untouched by the refusals.
-  CHECK(contents(base / "run" / "report.json") == report);
-  CHECK(contents(checkpoint) == good);
+  CHECK(test::file_contents(base / "run" / "report.json") == report);
+  CHECK(test::file_contents(checkpoint) == good);
   // The good checkpoint (after the last level) resumes to the same report, with nothing left to run.
   auto again = o;
   again.resume = checkpoint.string();

@@ -12,6 +12,7 @@
 
 #include "blockdem/analysis/vault_study.hpp"
 #include "blockdem/motion/synthetic.hpp"
+#include "../file_contents.hpp"
 #include "../threads.hpp"
 
 using namespace blockdem;
@@ -56,13 +57,6 @@ double peak_abs(const analysis::LevelResult& level, const std::string& channel) 
     if (p.name == channel) return std::max(std::abs(p.max), std::abs(p.min));
   FAIL("no channel " << channel);
   return 0;
-}
-
-std::string contents(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 }  // namespace
@@ -175,7 +169,7 @@ TEST_CASE("vault study: one and two threads write the same histories, bit for bi
     o.window_end = 2.3;
     o.out_dir = (base / std::to_string(run++)).string();
     analysis::run_vault_study(o);
-    const auto text = contents(std::filesystem::path(o.out_dir) / "history_75.csv");
+    const auto text = test::file_contents(std::filesystem::path(o.out_dir) / "history_75.csv");
     return std::vector<double>(text.begin(), text.end());
   });
   CHECK(different == 0);
@@ -196,14 +190,14 @@ TEST_CASE("vault study: the outputs of a level are complete files") {
   for (const char* name : {"report.json", "history_25.csv", "damage_25.vtu", "contacts_25.vtu", "contacts_25.csv", "snapshots.pvd"})
     CHECK_MESSAGE(std::filesystem::exists(dir / name), name);
   CHECK_FALSE(std::filesystem::exists(dir / "report.json.part"));
-  const auto report = contents(dir / "report.json");
+  const auto report = test::file_contents(dir / "report.json");
   CHECK(report.find("\"complete\": true") != std::string::npos);
   CHECK(report.find("NOT the AQA recording") != std::string::npos);
-  const auto history = contents(dir / "history_25.csv");
+  const auto history = test::file_contents(dir / "history_25.csv");
   CHECK(history.rfind("time,OC1_ux,OC1_uy,OC1_uz,OC1_ax,OC1_ay,OC1_az,", 0) == 0);
   // 0.1 s at 0.005 s: 21 rows and the header, every row with 1 + 9 x 6 fields.
   CHECK(std::count(history.begin(), history.end(), '\n') == 22);
-  CHECK(contents(dir / "damage_25.vtu").find("</VTKFile>") != std::string::npos);
+  CHECK(test::file_contents(dir / "damage_25.vtu").find("</VTKFile>") != std::string::npos);
   CHECK(r.timestep.dt > r.timestep.critical_unscaled * 0.5);  // density scaling raised the timestep, or left it
   std::filesystem::remove_all(dir);
 }

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "../file_contents.hpp"
 #include "../integrate/fixtures.hpp"
 #include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/vtk.hpp"
@@ -18,13 +19,6 @@
 using namespace blockdem;
 
 namespace {
-
-std::string slurp(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 /// Files larger than `bytes` cannot be written while it lives (writes fail with EFBIG instead of raising SIGXFSZ).
 class FileSizeLimit {
@@ -70,7 +64,7 @@ TEST_CASE("atomic file: the file appears whole, under its name, only when its wr
     CHECK(std::filesystem::exists(io::partial_path(path)));
     out << "1,2\n";
   });
-  CHECK(slurp(path) == "a,b\n1,2\n");
+  CHECK(test::file_contents(path) == "a,b\n1,2\n");
   CHECK_FALSE(std::filesystem::exists(io::partial_path(path)));
   // A writer that throws leaves the previous file as it was and no temporary file.
   CHECK_THROWS_AS(io::write_atomically(path, [&](std::ostream& out) {
@@ -78,7 +72,7 @@ TEST_CASE("atomic file: the file appears whole, under its name, only when its wr
                     throw InvalidArgument("stopped");
                   }),
                   InvalidArgument);
-  CHECK(slurp(path) == "a,b\n1,2\n");
+  CHECK(test::file_contents(path) == "a,b\n1,2\n");
   CHECK_FALSE(std::filesystem::exists(io::partial_path(path)));
   std::filesystem::remove_all(dir);
 }
@@ -97,7 +91,7 @@ TEST_CASE("atomic file: a write that fails (file too large, as on a full disk) n
   }
   CHECK(message.find("cannot write '" + path + "'") != std::string::npos);
   CHECK(message.find("File too large") != std::string::npos);
-  CHECK(slurp(path) == "previous\n");
+  CHECK(test::file_contents(path) == "previous\n");
   CHECK_FALSE(std::filesystem::exists(io::partial_path(path)));
 
   // The same through a VTK writer: the model is large enough to pass the limit.
@@ -116,7 +110,7 @@ TEST_CASE("atomic file: a write that fails (file too large, as on a full disk) n
   CHECK_FALSE(std::filesystem::exists(vtu));
   CHECK_FALSE(std::filesystem::exists(io::partial_path(vtu)));
   io::write_blocks_vtu(vtu, s.model);  // without the limit it is written whole
-  CHECK(slurp(vtu).ends_with("</VTKFile>\n"));
+  CHECK(test::file_contents(vtu).ends_with("</VTKFile>\n"));
   std::filesystem::remove_all(dir);
 }
 

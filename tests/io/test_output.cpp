@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "../file_contents.hpp"
 #include "../approx.hpp"
 #include "../integrate/fixtures.hpp"
 #include "blockdem/contact/elastic.hpp"
@@ -21,15 +22,6 @@
 #include "blockdem/io/vtk.hpp"
 
 using namespace blockdem;
-
-namespace {
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-}  // namespace
 
 TEST_CASE("output: VTK blocks and contact points, histories and the run report") {
   auto s = test::block_on_base(1, 1, 1);
@@ -52,11 +44,11 @@ TEST_CASE("output: VTK blocks and contact points, histories and the run report")
   CHECK(history.acceleration(k, 0).z() == test::approx(-1e-3 * omega * std::sin(omega * t - 1e-3 * omega)).epsilon(0.02));
 
   io::write_blocks_vtu((std::filesystem::temp_directory_path() / "blockdem_test_blocks.vtu").string(), s.model, {{"mass", {s.model.bodies.mass[0], s.model.bodies.mass[1]}}});
-  const auto blocks = slurp((std::filesystem::temp_directory_path() / "blockdem_test_blocks.vtu").string());
+  const auto blocks = test::file_contents((std::filesystem::temp_directory_path() / "blockdem_test_blocks.vtu").string());
   CHECK(blocks.find("NumberOfPoints=\"16\" NumberOfCells=\"12\"") != std::string::npos);
   CHECK(blocks.find("Name=\"mass\"") != std::string::npos);
   io::write_contacts_vtu((std::filesystem::temp_directory_path() / "blockdem_test_contacts.vtu").string(), sim);
-  const auto contacts = slurp((std::filesystem::temp_directory_path() / "blockdem_test_contacts.vtu").string());
+  const auto contacts = test::file_contents((std::filesystem::temp_directory_path() / "blockdem_test_contacts.vtu").string());
   CHECK(contacts.find("NumberOfPoints=\"4\" NumberOfCells=\"4\"") != std::string::npos);
   CHECK(contacts.find("Name=\"normal_stress\"") != std::string::npos);
   CHECK_THROWS_AS(io::write_blocks_vtu("/no/such/dir/x.vtu", s.model), InvalidArgument);
@@ -65,5 +57,5 @@ TEST_CASE("output: VTK blocks and contact points, histories and the run report")
   for (const char* field : {"\"dt\"", "\"steps\": 200", "\"wall_seconds\"", "\"ns_per_cp_step\"", "\"energy_balance_error\""})
     CHECK(report.find(field) != std::string::npos);
   history.write_csv((std::filesystem::temp_directory_path() / "blockdem_test_history.csv").string());
-  CHECK(slurp((std::filesystem::temp_directory_path() / "blockdem_test_history.csv").string()).rfind("time_s,top_ux,top_uy,top_uz,top_vx", 0) == 0);
+  CHECK(test::file_contents((std::filesystem::temp_directory_path() / "blockdem_test_history.csv").string()).rfind("time_s,top_ux,top_uy,top_uz,top_vx", 0) == 0);
 }
