@@ -49,7 +49,8 @@ TEST_CASE("run guard: a timestep forced to 1.5 times the critical one is stopped
   auto s = sliding_block();
   Sim sim(s.model, damping::None{}, stiff_joint());
   sim.set_timestep(1.5 * sim.critical_timestep(), TimestepCheck::unchecked);
-  const auto [steps, message] = run_until_stopped(sim, 5000);
+  const auto [steps, message_] = run_until_stopped(sim, 5000);
+  const std::string& message = message_;  // (a name a lambda can capture: CAPTURE below)
   CAPTURE(message);
   CHECK(steps > 0);
   CHECK(steps <= 300);
@@ -70,7 +71,8 @@ TEST_CASE("run guard: a block thrown at 150 m/s is stopped at the next check, wi
   s.model.bodies.position[s.block].z() += 0.5;  // in flight, clear of the base
   s.model.bodies.velocity[s.block] = Vec3(0, 0, 150);
   Sim sim(s.model, damping::None{}, stiff_joint());
-  const auto [steps, message] = run_until_stopped(sim, 100);
+  const auto [steps, message_] = run_until_stopped(sim, 100);
+  const std::string& message = message_;  // (a name a lambda can capture: CAPTURE below)
   CAPTURE(message);
   CHECK(steps == sim.run_guard().check_interval);
   CHECK(message.find("block 'block' (1) moves at 150 m/s (velocity), beyond 100 m/s") != std::string::npos);
@@ -88,7 +90,8 @@ TEST_CASE("run guard: a node whose velocity is not finite is named with its bloc
   s.model.make_deformable(s.block, 0.5, model::IsotropicElastic(30e9, 0.2));
   Sim sim(s.model, damping::None{}, stiff_joint());
   s.model.deformable.nodes.velocity[3] = Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0);
-  const auto [steps, message] = run_until_stopped(sim, 100);
+  const auto [steps, message_] = run_until_stopped(sim, 100);
+  const std::string& message = message_;  // (a name a lambda can capture: CAPTURE below)
   CAPTURE(message);
   CHECK(steps > 0);
   CHECK(message.find("of block 'block'") != std::string::npos);
@@ -108,7 +111,8 @@ TEST_CASE("run guard: a block that sinks into a joint far too soft for it stops 
   s.model.bodies.velocity[s.block] = Vec3(0, 0, -1);
   Sim sim(s.model, damping::None{}, [](int, int) { return contact::MohrCoulomb::Parameters(1e3, 1e3, 1e12, 1e12, 0.6); });
   sim.set_timestep(1e-3);
-  const auto [steps, message] = run_until_stopped(sim, 2000);
+  const auto [steps, message_] = run_until_stopped(sim, 2000);
+  const std::string& message = message_;  // (a name a lambda can capture: CAPTURE below)
   CAPTURE(message);
   // 1 m/s into a 1 m x 1 m joint: 0.25 m deep after 0.25 s, caught at the next check.
   CHECK(steps > 0);
@@ -124,7 +128,8 @@ TEST_CASE("run guard: a stress that is not finite in an element is named with it
   Sim sim(s.model, damping::None{}, stiff_joint());
   sim.set_run_guard(RunGuard{100, 1});
   s.model.deformable.tetrahedra.stress[2][3] = std::numeric_limits<double>::quiet_NaN();
-  const auto [steps, message] = run_until_stopped(sim, 100);
+  const auto [steps, message_] = run_until_stopped(sim, 100);
+  const std::string& message = message_;  // (a name a lambda can capture: CAPTURE below)
   CAPTURE(message);
   CHECK(steps == 1);
   CHECK(message.find("is not finite") != std::string::npos);
@@ -138,7 +143,8 @@ TEST_CASE("run guard: a joint traction that is not finite is traced to its conta
   auto& g = sim.group<contact::MohrCoulomb>();
   REQUIRE(g.size() > 2);
   g.history[2].shear[1] = std::numeric_limits<double>::quiet_NaN();
-  const auto [steps, message] = run_until_stopped(sim, 100);
+  const auto [steps, message_] = run_until_stopped(sim, 100);
+  const std::string& message = message_;  // (a name a lambda can capture: CAPTURE below)
   CAPTURE(message);
   CHECK(steps == 1);
   CHECK(message.find("velocity of block 'block' (1) is not finite") != std::string::npos);

@@ -50,7 +50,8 @@ Record pulse_in_noise(std::uint32_t seed) {
 
 TEST_CASE("wavelet truncation: eq. 32 corrected recovers the amplitude from the pulse's own PSV; as printed it does not") {
   // Reference: the pulse's amplitude A = 0.4 m/s; PSV(T_p) from the exact recursion of the sampled pulse.
-  for (auto [gamma, phase] : {std::pair{3.0, 0.0}, std::pair{5.0, pi / 2.0}, std::pair{8.0, 0.0}}) {
+  for (auto [gamma_, phase] : {std::pair{3.0, 0.0}, std::pair{5.0, pi / 2.0}, std::pair{8.0, 0.0}}) {
+    const double gamma = gamma_;  // (a name a lambda can capture: CAPTURE below)
     const MavroeidisPapageorgiouPulse pulse{0.4, gamma, 0.526, 8.0, phase};
     const auto record = to_record(pulse, 0.005, 4001);
     const double psv = two_pi / 0.526 * spectral_displacement(record, 0.526, 0.05);

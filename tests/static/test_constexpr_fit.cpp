@@ -28,16 +28,26 @@ constexpr auto rosenbrock = [] {
 static_assert(rosenbrock.second.converged());
 static_assert(abs(rosenbrock.first[0] - 1.0) < 1e-8 && abs(rosenbrock.first[1] - 1.0) < 1e-8);
 
+// Clang before 15 with libstdc++ refuses the fit's std::vector in a constant expression (it does not take the fill
+// of a new double[n] as starting the elements' lifetime); GCC, the project's compiler, and later Clang accept it.
+#if defined(__clang__) && __clang_major__ < 15
+#define BLOCKDEM_CONSTEXPR_FIT const
+#else
+#define BLOCKDEM_CONSTEXPR_FIT constexpr
+#define BLOCKDEM_HAS_CONSTEXPR_FIT 1
+#endif
 constexpr blockdem::damping::MaxwellFitOptions constexpr_options = [] {
   blockdem::damping::MaxwellFitOptions o;
   o.damping_ratio = 0.04;
   o.points = 100;  // fewer points than the paper's 500 keep the compile time short; the optimum barely moves
   return o;
 }();
-constexpr auto constexpr_fit = blockdem::damping::fit_maxwell(constexpr_options);
+BLOCKDEM_CONSTEXPR_FIT auto constexpr_fit = blockdem::damping::fit_maxwell(constexpr_options);
+#ifdef BLOCKDEM_HAS_CONSTEXPR_FIT
 static_assert(constexpr_fit.converged);
 static_assert(abs(1.0 + constexpr_fit.sum_alpha - 1.39) < 0.01);  // paper Fig. 10b
 static_assert(constexpr_fit.rel_error_min > -0.025 && constexpr_fit.rel_error_max < 0.012);
+#endif
 }  // namespace
 
 TEST_CASE("static: the compile-time Maxwell fit equals the run-time one") {
