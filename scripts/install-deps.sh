@@ -5,7 +5,8 @@
 #                                      OpenMPI (for `cross_vault sweep` on MPI ranks)
 #   scripts/install-deps.sh --plots    also Python with numpy and matplotlib for the plotting scripts
 #   scripts/install-deps.sh --minpack  also scipy, for benchmarks/minpack_reference.py
-#   scripts/install-deps.sh --fuzz     also clang and libFuzzer, for scripts/run-fuzzers.sh
+#   scripts/install-deps.sh --fuzz     also clang, libFuzzer and OpenMP for clang: scripts/run-fuzzers.sh and
+#                                      scripts/run-sanitized-tests.sh
 set -euo pipefail
 
 packages=(g++ cmake ninja-build libeigen3-dev libboost-dev doctest-dev libcli11-dev libfmt-dev libbenchmark-dev
@@ -14,8 +15,8 @@ for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(python3 python3-numpy python3-matplotlib) ;;
     --minpack) packages+=(python3 python3-numpy python3-scipy) ;;
-    --fuzz) packages+=(clang libclang-rt-14-dev) ;;
-    -h|--help) sed -n '2,9p' "$0"; exit 0 ;;
+    --fuzz) packages+=(clang libclang-rt-14-dev libomp-dev) ;;
+    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
     *) echo "install-deps.sh: unknown option '$arg' (allowed: --plots, --minpack, --fuzz)" >&2; exit 2 ;;
   esac
 done
