@@ -73,7 +73,7 @@ struct RunCommand {
         ->check(CLI::IsMember({"window", "wavelet"}))->capture_default_str();
     app.add_option("--window", window, "start and end of the window on the record's clock, s")->expected(2)->capture_default_str();
     app.add_option("--baseline", o.baseline, std::string("baseline correction: ") + blockdem::motion::baseline_grammar)->capture_default_str();
-    app.add_option("--rest", o.rest, "free motion after each level with the table at rest, s [0, 600]")->capture_default_str();
+    app.add_option("--rest", o.rest, "free motion after each level, the table going on at the velocity its record ends with (report.json: final_table_velocity_m_s), s [0, 600]")->capture_default_str();
     app.add_option("--damping", o.damping, "viscous damping of the dynamic run")
         ->transform(CLI::CheckedTransformer(std::map<std::string, DampingScheme>{{"none", DampingScheme::none},
                                                                                    {"mass", DampingScheme::mass},

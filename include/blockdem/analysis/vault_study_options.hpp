@@ -64,7 +64,7 @@ struct VaultStudyOptions {
   Truncation truncation = Truncation::window;
   double window_start = 0, window_end = 15;  // s, on the record's clock
   std::string baseline = "mean,highpass:0.1";  // motion::parse_baseline grammar
-  double rest = 1.0;                       // s of free motion after each level (table at rest)
+  double rest = 1.0;                       // s of free motion after each level (the table at its final velocity)
 
   // Damping (Sect. 4). zeta: 0 means the scheme's default (maxwell 3 %, mass 4 %, stiffness and rayleigh 3 %).
   DampingScheme damping = DampingScheme::maxwell;
