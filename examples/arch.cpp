@@ -2,8 +2,11 @@
 // acceleration lambda g? With --find-collapse, the collapse multiplier by bisection to 0.005.
 //
 //   arch --voussoirs 40 --thickness-ratio 0.15 --radius 1 --depth 0.5 --friction-angle 40 --lambda 0.1
-//        [--find-collapse] [--json] [--vtk PREFIX]
+//        [--find-collapse] [--to-rest] [--json] [--vtk PREFIX]
 //        [--deformable [--max-edge 0.25] [--young 5e9] [--poisson 0.2]] [--target-dt DT]
+//
+// With --to-rest a collapse is followed to its end: the voussoirs fall onto a floor level with the springings and come
+// to rest there (general contacts: they tumble onto edges and corners); the VTK files then show the heap.
 //
 // Exit status: 0 on success, 2 on bad input, 1 if the run left every physical bound (it diverged).
 
@@ -32,6 +35,7 @@ int main(int argc, char** argv) {
   app.add_option("--density", o.density, "kg/m^3")->capture_default_str();
   app.add_option("--normal-stiffness", o.normal_stiffness, "joint normal stiffness, Pa/m (shear: half)")->capture_default_str();
   app.add_flag("--find-collapse", find_collapse, "find the collapse multiplier lambda by bisection to 0.005");
+  app.add_flag("--to-rest", o.to_rest, "after a collapse, go on until the voussoirs rest on the floor");
   app.add_flag("--json", json, "print a JSON object");
   app.add_option("--vtk", o.vtk_prefix, "write PREFIX_blocks.vtu and PREFIX_contacts.vtu (final state) for ParaView");
   programs::add_deformable_options(app, o, "the voussoirs");
@@ -48,6 +52,9 @@ int main(int argc, char** argv) {
           .add("lambda", o.lambda)
           .add("lambda_collapse", find_collapse ? lambda_collapse : std::numeric_limits<double>::quiet_NaN())
           .add("max_displacement_m", r.max_displacement)
+          .add("at_rest", r.at_rest)
+          .add("voussoirs_on_floor", r.voussoirs_on_floor)
+          .add("max_penetration_m", r.max_penetration)
           .add("unbalanced_ratio", r.unbalanced_ratio)
           .add("steps", static_cast<long long>(r.steps))
           .add("wall_seconds", r.wall_seconds)
@@ -64,6 +71,9 @@ int main(int argc, char** argv) {
                  o.thickness_ratio, o.radius, o.friction_angle_deg, o.lambda, r.stands ? "STANDS" : "COLLAPSES");
       fmt::print("max displacement {:.3e} m, unbalanced force ratio {:.2e}, {} steps of {:.3e} s, {:.2f} s\n",
                  r.max_displacement, r.unbalanced_ratio, r.steps, r.timestep, r.wall_seconds);
+      if (o.to_rest)
+        fmt::print("{}: {} voussoirs on the floor, deepest overlap of two blocks {:.3e} m\n",
+                   r.at_rest ? "at rest" : "still moving at max steps", r.voussoirs_on_floor, r.max_penetration);
       if (o.deformable)
         fmt::print("deformable: {} nodes, {} tetrahedra, {} contact points; critical dt {:.3e} s unscaled, mass +{:.2f} %\n",
                    r.nodes, r.tetrahedra, r.contact_points, r.dt_critical_unscaled, r.mass_increase_percent);

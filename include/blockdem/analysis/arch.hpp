@@ -2,11 +2,16 @@
 // Static stability of a semicircular masonry arch on fixed springings under its own weight plus a horizontal body
 // acceleration lambda g (the equivalent static analysis of De Lorenzis et al. 2007), with dry Mohr-Coulomb joints,
 // solved by the DEM with Cundall's local damping: the arch stands if the unbalanced force vanishes, and collapses
-// if a mechanism keeps moving.
+// if a mechanism keeps moving. With `to_rest`, a collapse is followed to its end: the voussoirs fall onto a floor
+// (fixed blocks level with the springings, inside and outside the arch), tumble on it with general contacts
+// (vertex, edge and face) and come to rest there.
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "blockdem/analysis/deformable_options.hpp"
 #include "blockdem/contact/mohr_coulomb.hpp"
@@ -14,6 +19,7 @@
 #include "blockdem/core/units.hpp"
 #include "blockdem/damping/local.hpp"
 #include "blockdem/geometry/generators.hpp"
+#include "blockdem/geometry/queries.hpp"
 #include "blockdem/integrate/simulation.hpp"
 #include "blockdem/io/vtk.hpp"
 
@@ -31,6 +37,7 @@ struct ArchOptions : DeformableOptions {
   double unbalanced_tolerance = 1e-5;
   double collapse_displacement = 0; // m: a voussoir moving this far means collapse (0: a quarter of the thickness)
   long long max_steps = 400000;
+  bool to_rest = false;             // after a collapse, go on until the fallen voussoirs are at rest on the floor
   std::string vtk_prefix;           // if set: <prefix>_blocks.vtu and <prefix>_contacts.vtu at the end
                                     // (and <prefix>_tetrahedra.vtu with the density scaling factor if deformable)
 
@@ -49,11 +56,15 @@ struct ArchOptions : DeformableOptions {
     // Beyond these the timestep and the joint's overlap leave the range where the run means anything (it diverges).
     check(normal_stiffness >= 1e6 && normal_stiffness <= 1e15, "normal stiffness must be in [1e6, 1e15] Pa/m");
     check(max_steps >= 100, "max steps must be >= 100");
+    check(!(to_rest && deformable), "a collapse followed to rest needs rigid voussoirs (no --deformable)");
   }
 };
 
 struct ArchResult {
   bool stands = false;
+  bool at_rest = false;             // to_rest: the collapsed voussoirs came to rest (unbalanced force ratio below tolerance)
+  int voussoirs_on_floor = 0;       // to_rest: voussoirs whose lowest vertex is within the tolerance of the floor
+  double max_penetration = 0;       // m, to_rest: deepest overlap of two blocks (separating-axis test every 100 steps)
   double max_displacement = 0;  // m
   double unbalanced_ratio = 0;
   long long steps = 0;
@@ -66,6 +77,30 @@ struct ArchResult {
   std::size_t nodes = 0, tetrahedra = 0;
 };
 
+/// The deepest overlap (m, >= 0) of two blocks of the model that are not both fixed, by the separating-axis test
+/// over the pairs whose bounding boxes meet.
+inline double deepest_overlap(const model::Model& model) {
+  const auto& b = model.bodies;
+  std::vector<geometry::ConvexPolyhedron> world(b.size());
+  std::vector<Vec3> lo(b.size()), hi(b.size());
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    world[i] = b.world_shape(i);
+    lo[i] = hi[i] = world[i].vertices.front();
+    for (const auto& v : world[i].vertices) {
+      lo[i] = lo[i].cwiseMin(v);
+      hi[i] = hi[i].cwiseMax(v);
+    }
+  }
+  double deepest = 0;
+  for (std::size_t i = 0; i < b.size(); ++i)
+    for (std::size_t j = i + 1; j < b.size(); ++j) {
+      if (b.motion[i] != model::Motion::free && b.motion[j] != model::Motion::free) continue;
+      if ((lo[i].array() > hi[j].array()).any() || (lo[j].array() > hi[i].array()).any()) continue;
+      deepest = std::max(deepest, -geometry::separation(world[i], world[j]));
+    }
+  return deepest;
+}
+
 inline ArchResult analyse_arch(const ArchOptions& o) {
   o.validate();
   const auto start = std::chrono::steady_clock::now();
@@ -73,6 +108,15 @@ inline ArchResult analyse_arch(const ArchOptions& o) {
   const double thickness = o.thickness_ratio * o.radius;
   for (const auto& b : geometry::semicircular_arch(o.voussoirs, o.radius, thickness, o.depth))
     model.add_block(b.shape, o.density, b.name, 0, b.support ? model::Motion::fixed : model::Motion::free);
+  // The floor, its top level with the springings (z = 0): between the supports and outside them, 2 R on each side.
+  const double ri = o.radius - 0.5 * thickness, re = o.radius + 0.5 * thickness, span = re + 2 * o.radius + thickness;
+  const std::size_t floor_begin = model.bodies.size();
+  if (o.to_rest) {
+    const double y0 = -2 * o.depth, y1 = 2 * o.depth, inner = ri - 0.5 * thickness, outer = re + 0.5 * thickness;
+    model.add_block(geometry::make_box(Vec3(-inner, y0, -thickness), Vec3(inner, y1, 0)), o.density, "floor", 0, model::Motion::fixed);
+    model.add_block(geometry::make_box(Vec3(outer, y0, -thickness), Vec3(span, y1, 0)), o.density, "floor right", 0, model::Motion::fixed);
+    model.add_block(geometry::make_box(Vec3(-span, y0, -thickness), Vec3(-outer, y1, 0)), o.density, "floor left", 0, model::Motion::fixed);
+  }
   if (o.deformable)
     for (std::size_t i = 0; i < model.bodies.size(); ++i)
       if (model.bodies.motion[i] == model::Motion::free) model.make_deformable(i, o.max_edge, model::IsotropicElastic(o.young, o.poisson));
@@ -102,10 +146,21 @@ inline ArchResult analyse_arch(const ArchOptions& o) {
     for (std::size_t i = 0; i < initial_nodes.size(); ++i)
       r.max_displacement = std::max(r.max_displacement, (model.deformable.nodes.position[i] - initial_nodes[i]).norm());
     r.unbalanced_ratio = sim.unbalanced_force_ratio();
-    if (r.max_displacement > limit) break;
+    if (!o.to_rest && r.max_displacement > limit) break;
+    if (o.to_rest && r.steps % 100 == 99) r.max_penetration = std::max(r.max_penetration, deepest_overlap(model));
     if (r.unbalanced_ratio <= o.unbalanced_tolerance) {
-      r.stands = true;
+      r.stands = r.max_displacement <= limit;
+      r.at_rest = !r.stands;
       break;
+    }
+  }
+  if (o.to_rest) {
+    r.max_penetration = std::max(r.max_penetration, deepest_overlap(model));
+    for (std::size_t i = 0; i < floor_begin; ++i) {
+      if (model.bodies.motion[i] != model::Motion::free) continue;
+      double lowest = std::numeric_limits<double>::infinity();
+      for (const auto& v : model.bodies.world_shape(i).vertices) lowest = std::min(lowest, v.z());
+      if (lowest < contacts.tolerance && (model.bodies.position[i] - initial[i]).norm() > limit) ++r.voussoirs_on_floor;
     }
   }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

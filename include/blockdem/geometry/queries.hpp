@@ -22,6 +22,8 @@ inline double point_segment_distance(const Vec3& x, const Vec3& a, const Vec3& b
   return (a + t * ab - x).norm();
 }
 
+}  // namespace detail
+
 /// Unit directions of the edges of p, one per edge (each edge is listed by its two faces).
 inline std::vector<Vec3> edge_directions(const ConvexPolyhedron& p) {
   std::vector<Vec3> out;
@@ -35,7 +37,8 @@ inline std::vector<Vec3> edge_directions(const ConvexPolyhedron& p) {
   return out;
 }
 
-inline std::pair<double, double> project(const ConvexPolyhedron& p, const Vec3& axis) {
+/// The interval (lowest, highest) of p's projection on `axis`.
+inline std::pair<double, double> projection(const ConvexPolyhedron& p, const Vec3& axis) {
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (const auto& v : p.vertices) {
     const double s = axis.dot(v);
@@ -44,8 +47,6 @@ inline std::pair<double, double> project(const ConvexPolyhedron& p, const Vec3& 
   }
   return {lo, hi};
 }
-
-}  // namespace detail
 
 /// Euclidean distance (m) from x to the convex polyhedron p: 0 inside or on its boundary.
 inline double distance(const ConvexPolyhedron& p, const Vec3& x) {
@@ -83,14 +84,14 @@ inline double distance(const ConvexPolyhedron& p, const Vec3& x) {
 inline double separation(const ConvexPolyhedron& a, const ConvexPolyhedron& b) {
   double best = -std::numeric_limits<double>::infinity();
   auto test = [&](const Vec3& axis) {
-    const auto [alo, ahi] = detail::project(a, axis);
-    const auto [blo, bhi] = detail::project(b, axis);
+    const auto [alo, ahi] = projection(a, axis);
+    const auto [blo, bhi] = projection(b, axis);
     best = std::max(best, std::max(blo - ahi, alo - bhi));
   };
   for (std::size_t f = 0; f < a.faces.size(); ++f) test(a.face_normal(f));
   for (std::size_t f = 0; f < b.faces.size(); ++f) test(b.face_normal(f));
   if (best > 0) return best;  // a face separates them; edge axes can only show a larger gap, not change the sign
-  const auto ea = detail::edge_directions(a), eb = detail::edge_directions(b);
+  const auto ea = edge_directions(a), eb = edge_directions(b);
   for (const auto& u : ea)
     for (const auto& v : eb) {
       const Vec3 axis = u.cross(v);

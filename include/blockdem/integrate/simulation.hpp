@@ -10,6 +10,7 @@
 // output view of the contacts in integrate/contact_view.hpp. Results do not depend on the number of OpenMP threads.
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -292,6 +293,9 @@ class Simulation {
   const Damping& damping() const { return damping_; }
   const model::ContactSettings& contact_settings() const { return settings_; }
   int detections() const { return detections_; }
+  /// Wall time (s) spent detecting the contacts again and assigning them during the steps of this object (not the
+  /// first detection, nor those before a checkpoint it was loaded from).
+  double detection_seconds() const { return detection_seconds_; }
   /// Whether the model has deformable blocks, trusses or scaled rigid blocks (the mixed step runs).
   bool mixed() const { return mixed_; }
   const DeformableState<Damping, Laws...>& deformable_state() const { return deformable_; }
@@ -414,12 +418,14 @@ class Simulation {
       return e.elastic + e.viscous + e.slip;
     };
     const double before = stored();
+    const auto start = std::chrono::steady_clock::now();
     if constexpr (Mixed) {
       move_proxies(*model_);
       assign_all(model::detect_contacts(model_->bodies, settings_), /*keep_history=*/true);
     } else {
       assign_contacts(model::detect_contacts(model_->bodies, settings_), /*keep_history=*/true);
     }
+    detection_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     for_each_group([&](auto& g) { contact_pass(g, model_->bodies, damping_, 0.0); });
     if constexpr (Mixed) mixed_forces(0.0);
     contact_update_ += stored() - before;
@@ -640,6 +646,7 @@ class Simulation {
   RunGuard guard_;
   int steps_since_guard_ = 0;  // (not in checkpoints: when the checks fall changes no result)
   int detections_ = 0;
+  double detection_seconds_ = 0;
   bool pending_increment_ = false;
   bool moved_since_detection_ = false;
   bool static_masses_ = false;  // scale_masses_for_statics() until restore_real_masses()

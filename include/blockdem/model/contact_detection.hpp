@@ -1,10 +1,17 @@
 #pragma once
-// Automatic detection of face-to-face contact between convex blocks (the common-plane idea of Cundall 1988, paper
-// Sect. 3.1): a sweep-and-prune broad phase over bounding boxes; for each close pair, the common-plane normal is the
-// separating axis of least penetration among the face normals of both blocks; the best-aligned face of each block
-// is projected onto that plane, the two are clipped to their overlap polygon, and contact points (CPs) are placed
-// at its vertices, subdivided by a grid so that no CP carries more than a given area. Each CP gets its tributary
-// area, a normal from A to B, two shear directions and its gap.
+// Automatic detection of contact between convex blocks on their common plane (Cundall 1988, paper Sect. 3.1): a
+// sweep-and-prune broad phase over bounding boxes; for each close pair, the common-plane normal is the separating
+// axis of least penetration among the face normals of both blocks; the best-aligned face of each block is projected
+// onto that plane, the two are clipped to their overlap polygon, and contact points (CPs) are placed at its
+// vertices, subdivided by a grid so that no CP carries more than a given area. Each CP gets its tributary area, a
+// normal from A to B, two shear directions and its gap.
+//
+// That is the face-to-face contact of a joint. General contacts (the default) add those of blocks that touch with an
+// edge or a vertex (model/common_plane.hpp): where the faces are not aligned, the normal is sought among the edge-edge
+// directions too, and the CPs are drawn from the faces through each block's supporting vertex, edge or face. Only
+// the CPs within the tolerance of both blocks are kept, so a vertex-face contact has one CP at the vertex, an
+// edge-face contact two at the ends of the edge's part over the face, an edge-edge contact one at the crossing; as a
+// block turns from face-face to edge-face (rocking) its CPs stay where they were, and keep their histories.
 
 #include <algorithm>
 #include <array>
@@ -21,14 +28,23 @@
 #include "blockdem/core/types.hpp"
 #include "blockdem/geometry/convex_polyhedron.hpp"
 #include "blockdem/geometry/polygon.hpp"
+#include "blockdem/model/common_plane.hpp"
 #include "blockdem/model/model.hpp"
 
 namespace blockdem::model {
 
+/// Which contacts the detection finds.
+enum class ContactKinds {
+  faces,    ///< face to face only, between faces within max_normal_angle of each other (joints of small rotations)
+  general,  ///< also vertex-face, edge-face and edge-edge: blocks that rock far, tumble and collapse
+};
+
 struct ContactSettings {
+  ContactKinds kinds = ContactKinds::general;
   double tolerance = 1e-3;            ///< m: faces closer than this are in contact; also the largest overlap allowed at the start
   double max_contact_point_area = 0;  ///< m^2: subdivide overlaps so that no CP carries more (0: CPs at the polygon vertices only)
-  double max_normal_angle = 0.35;     ///< rad: faces tilted more than this from the common plane are not in contact (20 deg)
+  double max_normal_angle = 0.35;     ///< rad: faces tilted more than this from the common plane are not in face-face
+                                      ///< contact (20 deg); with general contacts they may be in edge or vertex contact
   double redetection_distance = 0;    ///< m: detect again once a block moved this far (0: half the tolerance)
   int redetection_check_interval = 1;   ///< steps between checks of the distance moved
 
@@ -157,12 +173,6 @@ inline std::size_t best_aligned_face(const FacePlanes& p, const Vec3& direction)
 
 }  // namespace detail
 
-/// Separation of two blocks: the largest gap along a face normal of either (negative: penetration depth).
-struct PairSeparation {
-  double separation = 0;  // m
-  Vec3 normal;            // from A to B
-};
-
 /// All contact points between the blocks in `bodies`. Pairs of blocks that are both fixed or base are skipped.
 /// `deepest` receives the pair with the largest overlap (most negative separation), for the start-up check.
 inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, const ContactSettings& settings,
@@ -170,6 +180,7 @@ inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, 
   const std::size_t n = bodies.size();
   std::vector<geometry::ConvexPolyhedron> world(n);
   std::vector<detail::FacePlanes> planes(n);
+  std::vector<std::vector<Vec3>> edges(n);  // edge directions, for the blocks of a general contact only
   std::vector<Vec3> lo(n), hi(n);
   for (std::size_t i = 0; i < n; ++i) {
     world[i] = bodies.world_shape(i);
@@ -183,11 +194,16 @@ inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, 
     lo[i].array() -= settings.tolerance;
     hi[i].array() += settings.tolerance;
   }
+  const auto edges_of = [&](std::size_t i) -> const std::vector<Vec3>& {
+    if (edges[i].empty()) edges[i] = geometry::edge_directions(world[i]);
+    return edges[i];
+  };
   // Sweep and prune along x.
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return lo[a].x() < lo[b].x(); });
   const double cos_max = std::cos(settings.max_normal_angle);
+  const bool general = settings.kinds == ContactKinds::general;
   std::vector<ContactCandidate> out;
   if (deepest) *deepest = {{0, 0}, 0.0};
   for (std::size_t u = 0; u < n; ++u) {
@@ -198,13 +214,31 @@ inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, 
       if ((lo[a].array() > hi[b].array()).any() || (lo[b].array() > hi[a].array()).any()) continue;
       const auto [sep_a, face_a] = detail::max_face_separation(planes[a], world[b]);
       const auto [sep_b, face_b] = detail::max_face_separation(planes[b], world[a]);
-      const double separation = std::max(sep_a, sep_b);
+      double separation = std::max(sep_a, sep_b);
       if (separation > settings.tolerance) continue;
+      Vec3 n_common = sep_a >= sep_b ? planes[a].normal[face_a] : Vec3(-planes[b].normal[face_b]);
+      std::size_t fa = detail::best_aligned_face(planes[a], n_common);
+      std::size_t fb = detail::best_aligned_face(planes[b], -n_common);
+      if (planes[a].normal[fa].dot(n_common) < cos_max || -planes[b].normal[fb].dot(n_common) < cos_max) {
+        if (!general) {
+          if (deepest && separation < deepest->second) *deepest = {{a, b}, separation};
+          continue;
+        }
+        // Not face to face: the plane may be that of an edge of each (edge-edge), and the CPs come from the faces
+        // through the features that touch it.
+        if (const CommonPlane e = best_edge_edge_plane(world[a], edges_of(a), world[b], edges_of(b));
+            e.separation > separation) {
+          separation = e.separation;
+          n_common = e.normal;
+          if (separation > settings.tolerance) continue;
+        }
+        double cos_a = 0, cos_b = 0;
+        fa = supporting_face(world[a], planes[a].normal, n_common, cos_a);
+        fb = supporting_face(world[b], planes[b].normal, -n_common, cos_b);
+        // A face nearly perpendicular to the plane projects onto a sliver; a gap measured across it means nothing.
+        if (cos_a < 0.05 || cos_b < 0.05) continue;
+      }
       if (deepest && separation < deepest->second) *deepest = {{a, b}, separation};
-      const Vec3 n_common = sep_a >= sep_b ? planes[a].normal[face_a] : Vec3(-planes[b].normal[face_b]);
-      const std::size_t fa = detail::best_aligned_face(planes[a], n_common);
-      const std::size_t fb = detail::best_aligned_face(planes[b], -n_common);
-      if (planes[a].normal[fa].dot(n_common) < cos_max || -planes[b].normal[fb].dot(n_common) < cos_max) continue;
 
       // 2D frame on the common plane: t1 along the longest edge of A's face.
       const auto& face = world[a].faces[fa];

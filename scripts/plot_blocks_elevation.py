@@ -1,0 +1,79 @@
+#!/usr/bin/python3
+"""Draw the blocks of one or more blockdem block files (.vtu, as `arch --vtk PREFIX` writes PREFIX_blocks.vtu) in
+elevation, seen along y: the faces projected on the x-z plane, the nearest drawn last, fixed blocks grey and free ones
+coloured by their displacement. One panel per file, side by side (for example the arch as built and after its
+collapse).
+
+    /usr/bin/python3 scripts/plot_blocks_elevation.py before_blocks.vtu after_blocks.vtu --titles "built" "collapsed" \\
+        --out arch_collapse.png
+
+Needs numpy and matplotlib (`scripts/install-deps.sh --plots` installs them).
+"""
+
+import argparse
+import xml.etree.ElementTree as ET
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.collections import PolyCollection  # noqa: E402
+from figures import save_figure  # noqa: E402
+
+
+def read_vtu(path):
+    """Points, polygons (lists of point indices) and cell arrays of an ASCII VTK unstructured grid."""
+    piece = ET.parse(path).getroot().find("UnstructuredGrid/Piece")
+
+    def array(parent, name=None):
+        for a in parent.iter("DataArray"):
+            if name is None or a.get("Name") == name:
+                return np.array(a.text.split(), dtype=float)
+        raise SystemExit(f"{path}: no DataArray {name}")
+
+    points = array(piece.find("Points")).reshape(-1, 3)
+    cells = piece.find("Cells")
+    connectivity = array(cells, "connectivity").astype(int)
+    offsets = array(cells, "offsets").astype(int)
+    starts = np.concatenate(([0], offsets[:-1]))
+    polygons = [connectivity[s:e] for s, e in zip(starts, offsets)]
+    cell_data = {a.get("Name"): np.array(a.text.split(), dtype=float) for a in piece.find("CellData").iter("DataArray")}
+    return points, polygons, cell_data
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("vtu", nargs="+", help="block files")
+    parser.add_argument("--titles", nargs="*", default=[], help="one title per file")
+    parser.add_argument("--out", required=True, help="output PNG")
+    args = parser.parse_args()
+    fig, axes = plt.subplots(1, len(args.vtu), figsize=(5.5 * len(args.vtu), 3.6), squeeze=False)
+    drawn = [read_vtu(path) for path in args.vtu]
+    top = max((c.get("displacement", np.zeros(1)).max() for _, _, c in drawn), default=0) or 1.0
+    lo = np.min([p.min(axis=0) for p, _, _ in drawn], axis=0)
+    hi = np.max([p.max(axis=0) for p, _, _ in drawn], axis=0)
+    for k, (ax, (points, polygons, cells)) in enumerate(zip(axes[0], drawn)):
+        motion = cells.get("motion", np.zeros(len(polygons)))
+        displacement = cells.get("displacement", np.zeros(len(polygons)))
+        faces = []
+        for polygon, m, d in zip(polygons, motion, displacement):
+            colour = "#b9b9b9" if m != 0 else plt.cm.viridis(min(d / top, 1.0))
+            faces.append((-points[polygon][:, 1].mean(), points[polygon][:, [0, 2]], colour))
+        faces.sort(key=lambda f: f[0])  # farthest (largest y) first
+        ax.add_collection(PolyCollection([f[1] for f in faces], facecolors=[f[2] for f in faces],
+                                         edgecolors="#202020", linewidths=0.3))
+        ax.set_xlim(lo[0] - 0.05, hi[0] + 0.05)
+        ax.set_ylim(lo[2] - 0.05, hi[2] + 0.05)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x (m)")
+        ax.set_ylabel("z (m)")
+        if k < len(args.titles):
+            ax.set_title(args.titles[k], fontsize=10)
+    mappable = plt.cm.ScalarMappable(cmap="viridis", norm=plt.Normalize(0, top))
+    fig.colorbar(mappable, ax=axes[0].tolist(), label="displacement (m)", shrink=0.8)
+    save_figure(fig, args.out, dpi=130)
+
+
+if __name__ == "__main__":
+    main()
