@@ -35,6 +35,10 @@ int main(int argc, char** argv) {
   app.add_option("--density", o.density, "kg/m^3")->capture_default_str();
   app.add_option("--normal-stiffness", o.normal_stiffness, "joint normal stiffness, Pa/m (shear: half)")->capture_default_str();
   app.add_flag("--find-collapse", find_collapse, "find the collapse multiplier lambda by bisection to 0.005");
+  app.add_option("--unbalanced-tolerance", o.unbalanced_tolerance,
+                 "unbalanced force ratio below which the arch stands (or, --to-rest, its pieces rest), (0, 0.1]")
+      ->capture_default_str();
+  app.add_option("--max-steps", o.max_steps, "most steps, >= 100")->capture_default_str();
   app.add_flag("--to-rest", o.to_rest, "after a collapse, go on until the voussoirs rest on the floor");
   app.add_flag("--json", json, "print a JSON object");
   app.add_option("--vtk", o.vtk_prefix, "write PREFIX_blocks.vtu and PREFIX_contacts.vtu (final state) for ParaView");
@@ -55,6 +59,8 @@ int main(int argc, char** argv) {
           .add("at_rest", r.at_rest)
           .add("voussoirs_on_floor", r.voussoirs_on_floor)
           .add("max_penetration_m", r.max_penetration)
+          .add("detections", r.detections)
+          .add("detection_seconds", r.detection_seconds)
           .add("unbalanced_ratio", r.unbalanced_ratio)
           .add("steps", static_cast<long long>(r.steps))
           .add("wall_seconds", r.wall_seconds)

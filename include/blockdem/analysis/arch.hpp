@@ -56,6 +56,7 @@ struct ArchOptions : DeformableOptions {
     // Beyond these the timestep and the joint's overlap leave the range where the run means anything (it diverges).
     check(normal_stiffness >= 1e6 && normal_stiffness <= 1e15, "normal stiffness must be in [1e6, 1e15] Pa/m");
     check(max_steps >= 100, "max steps must be >= 100");
+    check(unbalanced_tolerance > 0 && unbalanced_tolerance <= 0.1, "unbalanced tolerance must be in (0, 0.1]");
     check(!(to_rest && deformable), "a collapse followed to rest needs rigid voussoirs (no --deformable)");
   }
 };
@@ -64,6 +65,8 @@ struct ArchResult {
   bool stands = false;
   bool at_rest = false;             // to_rest: the collapsed voussoirs came to rest (unbalanced force ratio below tolerance)
   int voussoirs_on_floor = 0;       // to_rest: voussoirs whose lowest vertex is within the tolerance of the floor
+  int detections = 0;               // contact detections during the steps
+  double detection_seconds = 0;     // wall time in them, s
   double max_penetration = 0;       // m, to_rest: deepest overlap of two blocks (separating-axis test every 100 steps)
   double max_displacement = 0;  // m
   double unbalanced_ratio = 0;
@@ -163,6 +166,8 @@ inline ArchResult analyse_arch(const ArchOptions& o) {
       if (lowest < contacts.tolerance && (model.bodies.position[i] - initial[i]).norm() > limit) ++r.voussoirs_on_floor;
     }
   }
+  r.detections = sim.detections();
+  r.detection_seconds = sim.detection_seconds();
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!o.vtk_prefix.empty()) {
     std::vector<double> displacement(model.bodies.size());
