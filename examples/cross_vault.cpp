@@ -92,6 +92,13 @@ struct RunCommand {
     app.add_option("--max-mass-increase", o.max_mass_increase_percent, "refuse a --target-dt that adds more mass than this, %")->capture_default_str();
     app.add_option("--settle-tolerance", o.settle_tolerance, "unbalanced-force ratio that ends settling")->capture_default_str();
     app.add_option("--settle-steps", o.settle_max_steps, "most steps of settling")->capture_default_str();
+    app.add_option("--contacts", o.contacts,
+                   "general (vertex, edge and face: blocks may turn as far as a collapse takes them) or faces (face to "
+                   "face within 20 degrees only)")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, blockdem::model::ContactKinds>{
+                                                {"general", blockdem::model::ContactKinds::general}, {"faces", blockdem::model::ContactKinds::faces}},
+                                            CLI::ignore_case))
+        ->capture_default_str();
     app.add_option("--runaway-displacement", o.runaway_displacement,
                    "stop with an error when a monitor point moves farther than this from where it settled, m [0.001, 1e6]")
         ->capture_default_str();
@@ -253,6 +260,7 @@ int main(int argc, char** argv) {
   CLI::App app{"The LNEC masonry cross vault: geometry, components, materials and contacts (blockdem)"};
   models::CrossVaultOptions o;
   model::ContactSettings contacts;
+  contacts.kinds = model::ContactKinds::faces;  // the vault's joints, as `run` detects them by default
   bool geometry_only = false, json = false;
   std::string vtk_path, contacts_vtk_path;
   app.add_flag("--geometry-only", geometry_only, "build and check the model and write it out");

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Draw the blocks of one or more blockdem block files (.vtu, as `arch --vtk PREFIX` writes PREFIX_blocks.vtu) in
 elevation, seen along y: the faces projected on the x-z plane, the nearest drawn last, fixed blocks grey and free ones
-coloured by their displacement. One panel per file, side by side (for example the arch as built and after its
+coloured by their displacement. One panel per file, one above the other (for example the arch as built and after its
 collapse).
 
     /usr/bin/python3 scripts/plot_blocks_elevation.py before_blocks.vtu after_blocks.vtu --titles "built" "collapsed" \\
@@ -48,11 +48,14 @@ def main():
     parser.add_argument("--titles", nargs="*", default=[], help="one title per file")
     parser.add_argument("--out", required=True, help="output PNG")
     args = parser.parse_args()
-    fig, axes = plt.subplots(1, len(args.vtu), figsize=(5.5 * len(args.vtu), 3.6), squeeze=False)
     drawn = [read_vtu(path) for path in args.vtu]
     top = max((c.get("displacement", np.zeros(1)).max() for _, _, c in drawn), default=0) or 1.0
     lo = np.min([p.min(axis=0) for p, _, _ in drawn], axis=0)
     hi = np.max([p.max(axis=0) for p, _, _ in drawn], axis=0)
+    # Panels stacked, each as wide as the page and as high as the blocks' elevation needs.
+    aspect = (hi[2] - lo[2] + 0.1) / (hi[0] - lo[0] + 0.1)
+    fig, axes = plt.subplots(len(args.vtu), 1, figsize=(10, 0.9 + len(args.vtu) * (10 * aspect + 0.6)), squeeze=False)
+    axes = axes.T
     for k, (ax, (points, polygons, cells)) in enumerate(zip(axes[0], drawn)):
         motion = cells.get("motion", np.zeros(len(polygons)))
         displacement = cells.get("displacement", np.zeros(len(polygons)))
@@ -71,7 +74,7 @@ def main():
         if k < len(args.titles):
             ax.set_title(args.titles[k], fontsize=10)
     mappable = plt.cm.ScalarMappable(cmap="viridis", norm=plt.Normalize(0, top))
-    fig.colorbar(mappable, ax=axes[0].tolist(), label="displacement (m)", shrink=0.8)
+    fig.colorbar(mappable, ax=axes[0].tolist(), label="displacement (m)", shrink=0.9, pad=0.02)
     save_figure(fig, args.out, dpi=130)
 
 

@@ -62,6 +62,7 @@ inline std::uint64_t study_hash(const VaultStudyOptions& o, const model::Model& 
   h.add(static_cast<int>(o.damping)).add(o.scheme_zeta()).add(o.frequency_hz).add(o.lower_hz).add(o.upper_hz).add(o.branches);
   h.add(o.target_dt).add(o.default_mass_increase_percent).add(o.settle_tolerance).add(o.settle_max_steps);
   h.add(o.free_vibration).add(o.history_dt).add(o.snapshots_every);
+  h.add(static_cast<int>(o.contacts));
   return h.value();
 }
 

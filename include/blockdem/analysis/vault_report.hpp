@@ -37,6 +37,8 @@ struct LevelResult {
   EnergyReport energy;              // since the start of the dynamic run, at the end of the level
   EnergyReport energy_at_start;     // the same at the start of the level
   TimestepHold hold;                // since the start of the dynamic run, at the end of the level (cumulative)
+  long long detections = 0;         // contact detections since the start of the dynamic run (cumulative)
+  double detection_seconds = 0;     // wall time in them (s, cumulative; since the run was started or resumed)
 
   double steps_per_second() const { return wall_seconds > 0 ? steps / wall_seconds : 0; }
 
@@ -59,6 +61,8 @@ struct LevelResult {
     ar("energy", s.energy);
     ar("energy at the start", s.energy_at_start);
     ar("timestep hold", s.hold);
+    ar("detections", s.detections);
+    ar("detection wall time", s.detection_seconds);
   }
 };
 
@@ -200,7 +204,8 @@ inline std::string report_json(const VaultStudyResult& r) {
       .add("cut", r.input.cut).add("duration_s", r.input.duration).add("baseline", r.input.baseline)
       .add("axis", std::string(1, o.axis)).add("pga_m_s2", r.input.pga).add("pgv_m_s", r.input.pgv).add("pgd_m", r.input.pgd);
   if (r.input.synthetic) input.add("note", "the built-in synthetic AQA75 stand-in, NOT the AQA recording");
-  model.add("kinematics", name(o.kinematics)).add("blocks", static_cast<long long>(r.model.blocks))
+  model.add("kinematics", name(o.kinematics))
+      .add("contacts", o.contacts == model::ContactKinds::general ? "general" : "faces").add("blocks", static_cast<long long>(r.model.blocks))
       .add("deformable_blocks", static_cast<long long>(r.model.deformable_blocks))
       .add("nodes", static_cast<long long>(r.model.nodes)).add("tetrahedra", static_cast<long long>(r.model.tetrahedra))
       .add("contact_points", static_cast<long long>(r.model.contact_points)).add("ties", static_cast<long long>(r.model.ties))
@@ -259,7 +264,8 @@ inline std::string report_json(const VaultStudyResult& r) {
         .add("wall_seconds", L.wall_seconds).add("steps_per_second", L.steps_per_second()).add("dt_s", r.timestep.dt)
         .add("interrupted", L.interrupted).add("final_table_velocity_m_s", L.final_table_velocity)
         .add("peaks", peaks).add("residual_displacement_m", residual).add("damage", damage)
-        .add("energy", energy_json(L.energy)).add("energy_change_over_level", energy_json(delta));
+        .add("energy", energy_json(L.energy)).add("energy_change_over_level", energy_json(delta))
+        .add("detections", L.detections).add("detection_seconds", L.detection_seconds);
     JsonObject hold;  // cumulative since the start of the dynamic run
     hold.add("checks", L.hold.checks).add("raises", L.hold.raises).add("raised_nodes", L.hold.raised_nodes)
         .add("raised_blocks", L.hold.raised_blocks).add("added_mass_kg", L.hold.added_mass)

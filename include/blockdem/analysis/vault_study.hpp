@@ -246,7 +246,9 @@ void with_settled_vault(const VaultStudyOptions& o, VaultStudyResult& r, F&& f,
     r.damping.scheme = name(o.damping);
     using Settle = VaultSimulation<damping::Local>;
     using Dynamic = VaultSimulation<D>;
-    Settle settle(model, damping::Local{}, detail::vault_properties<Settle>(vault));
+    model::ContactSettings contacts;
+    contacts.kinds = o.contacts;
+    Settle settle(model, damping::Local{}, detail::vault_properties<Settle>(vault), contacts);
     r.model.contact_points = settle.contact_points();
     // The timestep of the dynamic run, chosen before settling so that a bad target is refused at once.
     auto factor = [&](double omega) { return policy.timestep_factor(omega); };
@@ -511,6 +513,8 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
       L.peaks = history.peaks();
       for (std::size_t p = 0; p < history.points(); ++p) L.residual_displacement.push_back(history.last_displacement(p));
       L.damage = damage_census(sim, model);
+      L.detections = sim.detections();
+      L.detection_seconds = sim.detection_seconds();
       L.energy = sim.energy();
       L.energy_at_start = cursor.energy_at_level_start;
       L.hold = sim.timestep_hold();
