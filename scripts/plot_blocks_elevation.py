@@ -11,7 +11,6 @@ Needs numpy and matplotlib (`scripts/install-deps.sh --plots` installs them).
 """
 
 import argparse
-import xml.etree.ElementTree as ET
 
 import matplotlib
 
@@ -20,26 +19,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 from figures import save_figure  # noqa: E402
-
-
-def read_vtu(path):
-    """Points, polygons (lists of point indices) and cell arrays of an ASCII VTK unstructured grid."""
-    piece = ET.parse(path).getroot().find("UnstructuredGrid/Piece")
-
-    def array(parent, name=None):
-        for a in parent.iter("DataArray"):
-            if name is None or a.get("Name") == name:
-                return np.array(a.text.split(), dtype=float)
-        raise SystemExit(f"{path}: no DataArray {name}")
-
-    points = array(piece.find("Points")).reshape(-1, 3)
-    cells = piece.find("Cells")
-    connectivity = array(cells, "connectivity").astype(int)
-    offsets = array(cells, "offsets").astype(int)
-    starts = np.concatenate(([0], offsets[:-1]))
-    polygons = [connectivity[s:e] for s, e in zip(starts, offsets)]
-    cell_data = {a.get("Name"): np.array(a.text.split(), dtype=float) for a in piece.find("CellData").iter("DataArray")}
-    return points, polygons, cell_data
+from vtu import read_vtu  # noqa: E402
 
 
 def main():

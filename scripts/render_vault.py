@@ -9,7 +9,6 @@ Needs numpy and matplotlib (the system python3 has them; `scripts/install-deps.s
 """
 
 import argparse
-import xml.etree.ElementTree as ET
 
 import matplotlib
 
@@ -19,32 +18,12 @@ import numpy as np  # noqa: E402
 from matplotlib.collections import PolyCollection  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
 from figures import save_figure  # noqa: E402
+from vtu import read_vtu  # noqa: E402
 from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 
 # Component indices as in include/blockdem/models/cross_vault.hpp (enum class Component).
 COMPONENTS = ["vault", "infill", "fixed pier", "movable pier", "slab", "tie anchor", "steel frame"]
 COLOURS = ["#c8643c", "#e3b778", "#8c6d5a", "#4a78b5", "#b9b9b9", "#6f8f3a", "#37474f"]
-
-
-def read_vtu(path):
-    """Points, polygons (lists of point indices) and cell arrays of an ASCII VTK unstructured grid."""
-    root = ET.parse(path).getroot()
-    piece = root.find("UnstructuredGrid/Piece")
-
-    def array(parent, name=None):
-        for a in parent.iter("DataArray"):
-            if name is None or a.get("Name") == name:
-                return np.array(a.text.split(), dtype=float)
-        raise KeyError(f"{path}: no DataArray {name}")
-
-    points = array(piece.find("Points")).reshape(-1, 3)
-    cells = piece.find("Cells")
-    connectivity = array(cells, "connectivity").astype(int)
-    offsets = array(cells, "offsets").astype(int)
-    starts = np.concatenate(([0], offsets[:-1]))
-    polygons = [connectivity[s:e] for s, e in zip(starts, offsets)]
-    cell_data = {a.get("Name"): np.array(a.text.split(), dtype=float) for a in piece.find("CellData").iter("DataArray")}
-    return points, polygons, cell_data
 
 
 def draw(ax, points, polygons, component, keep, elev, azim, title):
