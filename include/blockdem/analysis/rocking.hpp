@@ -30,7 +30,6 @@ struct RockingOptions : DeformableOptions {
   double height = 1.0;   // m
   double density = 2000; // kg/m^3
   double friction_angle_deg = 45;
-  double shear_stiffness_ratio = 1;  // k_s / k_n
   double normal_stiffness = 1e9;  // Pa/m; shear stiffness equal
   double duration = 2.0;  // s
   /// Dashpots beta k in the joint's springs (stiffness-proportional), beta for this fraction of critical damping of
@@ -60,7 +59,6 @@ struct RockingOptions : DeformableOptions {
     check(friction_angle_deg > 0 && friction_angle_deg <= 89, "friction angle must be in (0, 89] degrees");
     // Beyond these the timestep and the joint's overlap leave the range where the run means anything (it diverges).
     check(normal_stiffness >= 1e6 && normal_stiffness <= 1e15, "normal stiffness must be in [1e6, 1e15] Pa/m");
-    check(shear_stiffness_ratio >= 1e-3 && shear_stiffness_ratio <= 1e3, "shear stiffness ratio k_s / k_n must be in [1e-3, 1e3]");
     check(duration > 0 && duration <= 1e4, "duration must be in (0, 1e4] s");
     check(contact_damping_ratio >= 0 && contact_damping_ratio <= 10, "contact damping ratio must be in [0, 10]");
     check(record_interval > 0, "record interval must be > 0 s");
@@ -104,8 +102,7 @@ inline RockingResult analyse_rocking(const RockingOptions& o) {
                                     model::Motion::base);
   const auto block = model.add_block(geometry::make_box(Vec3(-0.5 * w, -0.5 * d, 0), Vec3(0.5 * w, 0.5 * d, h)), o.density, "block", 1);
   if (o.deformable) model.make_deformable(block, o.max_edge, model::IsotropicElastic(o.young, o.poisson));
-  const contact::MohrCoulomb::Parameters joint(o.normal_stiffness, o.shear_stiffness_ratio * o.normal_stiffness, 0, 0,
-                                                o.friction_angle_deg * pi / 180.0);
+  const contact::MohrCoulomb::Parameters joint(o.normal_stiffness, o.normal_stiffness, 0, 0, o.friction_angle_deg * pi / 180.0);
   Simulation<damping::Local, contact::MohrCoulomb> settle(model, damping::Local{}, [&](int, int) { return joint; });
   RockingResult r;
   r.dt_critical_unscaled = settle.critical_timestep();

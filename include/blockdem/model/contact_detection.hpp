@@ -219,26 +219,25 @@ inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, 
       Vec3 n_common = sep_a >= sep_b ? planes[a].normal[face_a] : Vec3(-planes[b].normal[face_b]);
       std::size_t fa = detail::best_aligned_face(planes[a], n_common);
       std::size_t fb = detail::best_aligned_face(planes[b], -n_common);
-      if (planes[a].normal[fa].dot(n_common) < cos_max || -planes[b].normal[fb].dot(n_common) < cos_max) {
-        if (!general) {
-          if (deepest && separation < deepest->second) *deepest = {{a, b}, separation};
-          continue;
-        }
-        // Not face to face: the plane may be that of an edge of each (edge-edge), and the CPs come from the faces
-        // through the features that touch it.
-        if (const CommonPlane e = best_edge_edge_plane(world[a], edges_of(a), world[b], edges_of(b));
-            e.separation > separation) {
+      const bool face_to_face =
+          planes[a].normal[fa].dot(n_common) >= cos_max && -planes[b].normal[fb].dot(n_common) >= cos_max;
+      // Not face to face: the plane may be that of an edge of each (edge-edge), whose separation is the truer one.
+      if (!face_to_face && general)
+        if (const CommonPlane e = best_edge_edge_plane(world[a], edges_of(a), world[b], edges_of(b)); e.separation > separation) {
           separation = e.separation;
           n_common = e.normal;
           if (separation > settings.tolerance) continue;
         }
+      if (deepest && separation < deepest->second) *deepest = {{a, b}, separation};
+      if (!face_to_face) {
+        if (!general) continue;
+        // The CPs come from the faces through the features that touch the plane.
         double cos_a = 0, cos_b = 0;
         fa = supporting_face(world[a], planes[a].normal, n_common, cos_a);
         fb = supporting_face(world[b], planes[b].normal, -n_common, cos_b);
         // A face nearly perpendicular to the plane projects onto a sliver; a gap measured across it means nothing.
         if (cos_a < 0.05 || cos_b < 0.05) continue;
       }
-      if (deepest && separation < deepest->second) *deepest = {{a, b}, separation};
 
       // 2D frame on the common plane: t1 along the longest edge of A's face.
       const auto& face = world[a].faces[fa];
