@@ -99,6 +99,10 @@ struct RunCommand {
                                                 {"general", blockdem::model::ContactKinds::general}, {"faces", blockdem::model::ContactKinds::faces}},
                                             CLI::ignore_case))
         ->capture_default_str();
+    app.add_option("--residual-compressive-strength", o.vault.residual_compressive_strength,
+                   "f_c,r: compressive stress a joint crushed through still carries, Pa [0, f_c); the paper's law has 0, "
+                   "and then blocks that crush their joints pass through each other (runs past its levels)")
+        ->capture_default_str();
     app.add_option("--runaway-displacement", o.runaway_displacement,
                    "stop with an error when a monitor point moves farther than this from where it settled, m [0.001, 1e6]")
         ->capture_default_str();
@@ -387,7 +391,8 @@ int main(int argc, char** argv) {
             .add("friction_angle_deg", p.friction_angle * 180 / pi).add("cohesion_pa", p.cohesion)
             .add("tensile_strength_pa", p.tensile_strength);
         if (kind == models::JointKind::Softening)
-          j.add("compressive_strength_pa", p.compressive_strength).add("fracture_energy_tension_n_m", p.fracture_energy_tension)
+          j.add("compressive_strength_pa", p.compressive_strength).add("residual_compressive_strength_pa", p.residual_compressive_strength)
+              .add("fracture_energy_tension_n_m", p.fracture_energy_tension)
               .add("fracture_energy_shear_n_m", p.fracture_energy_shear).add("fracture_energy_compression_n_m", p.fracture_energy_compression);
         joints.add(models::name(kind), j);
       }

@@ -128,6 +128,10 @@ TEST_CASE("softening: bad parameters name the field and the allowed range") {
                        doctest::Contains("residual cohesion must be in [0, cohesion"), InvalidArgument);
   CHECK_THROWS_WITH_AS(Parameters(k, with([](auto& t) { t.residual_friction_angle = 40 * degree; }), g),
                        doctest::Contains("residual friction angle must be in [0, friction angle"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(Parameters(k, with([](auto& t) { t.residual_compressive = 9.1e6; }), g),
+                       doctest::Contains("residual compressive strength must be in [0, compressive strength"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(Parameters(k, with([](auto& t) { t.residual_compressive = -1; }), g),
+                       doctest::Contains("residual compressive strength must be in [0, compressive strength"), InvalidArgument);
   // f_t^2 / (2 k_n) = 0.09e12 / 8e10 = 1.125 J/m^2: a smaller G_f^I would need a snap-back.
   CHECK_THROWS_WITH_AS(Parameters(k, s, {1.0, 175, 18615}),
                        doctest::Contains("G_f^I must be > f_t^2 / (2 k_n) = 1.125"), InvalidArgument);
@@ -240,6 +244,52 @@ TEST_CASE("softening: compression peaks at f_c and dissipates G_c after the peak
   Driver one(p);
   one.step(-(sp + 0.04));
   CHECK(one.dissipated == test::approx(d.dissipated).epsilon(1e-11));
+}
+
+TEST_CASE("softening: a residual compressive strength f_c,r is what a crushed joint keeps carrying") {
+  // The paper's law softens to 0, and a joint crushed through lets its blocks pass through each other. With f_c,r
+  // the envelope is f_c,r + (f_c - f_c,r) exp(-beta_c (s - s_p)) with the paper's beta_c (as f_t,r keeps beta_t).
+  const Parameters paper = table1();
+  auto s = ElastoSoftening::Strengths{paper.tensile_strength, paper.cohesion, paper.friction_angle, paper.compressive_strength};
+  const double fc = paper.compressive_strength, fr = 0.2 * fc;
+  s.residual_compressive = fr;
+  const Parameters p({paper.normal_stiffness, paper.shear_stiffness}, s,
+                     {paper.tension_fracture_energy, paper.shear_fracture_energy, paper.compression_fracture_energy});
+  CHECK(p.compression_softening_rate == paper.compression_softening_rate);
+  const double sp = p.peak_closure, beta = p.compression_softening_rate;
+  Driver d(p);
+  d.leg(-sp, {0, 0}, 400);
+  CHECK(d.sigma == test::approx(fc).epsilon(1e-12));
+  const double at_peak = d.dissipated;
+  const double reach = 0.005;  // 5 mm past the peak: 2.4 / beta_c
+  d.leg(-reach, {0, 0}, 20000);
+  const double decay = std::exp(-beta * reach);
+  CHECK(d.sigma == test::approx(fr + (fc - fr) * decay).epsilon(1e-12));
+  // From the peak on: the work on the envelope, in closed form, plus the elastic energy at the peak, less what the
+  // secant still stores.
+  const double envelope = fr * reach + (fc - fr) * (1 - decay) / beta;
+  const double stored = 0.5 * d.sigma * (sp + reach);
+  CHECK(d.stored() == test::approx(stored).epsilon(1e-12));
+  CHECK(d.dissipated - at_peak == test::approx(envelope + 0.5 * fc * sp - stored).epsilon(1e-9));
+  CHECK(d.work == test::approx(d.dissipated + d.stored()).epsilon(1e-6));
+  CHECK(d.h.failed == 0);  // 91 % of f_c - f_c,r gone: not yet the 99.9 % of a failed bond
+  Driver one(p);
+  one.step(-(sp + reach));
+  CHECK(one.dissipated == test::approx(d.dissipated).epsilon(1e-11));
+  // Far on, the joint carries f_c,r however much more it closes; unloaded, it reloads along its secant to there.
+  d.leg(-0.1, {0, 0}, 20000);
+  CHECK(d.sigma == test::approx(fr).epsilon(1e-12));
+  CHECK(d.h.failed == 1);
+  const double closure = -d.h.gap;
+  d.leg(0.5 * closure, {0, 0}, 100);
+  CHECK(d.sigma == test::approx(0.5 * fr).epsilon(1e-9));
+  d.leg(-0.5 * closure - 0.01, {0, 0}, 100);
+  CHECK(d.sigma == test::approx(fr).epsilon(1e-9));
+  CHECK(d.work == test::approx(d.dissipated + d.stored()).epsilon(1e-6));  // the unload-reload cycle dissipates nothing
+  // The paper's law on the same path carries nothing: the blocks would pass through each other.
+  Driver zero(paper);
+  zero.leg(-(sp + reach + 0.1), {0, 0}, 40000);
+  CHECK(zero.sigma < 1e-12 * fc);
 }
 
 // ---- cycles ----

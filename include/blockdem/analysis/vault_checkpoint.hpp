@@ -55,7 +55,7 @@ inline std::uint64_t study_hash(const VaultStudyOptions& o, const model::Model& 
   for (const auto& row : v.joints)
     for (const auto& j : row)
       h.add(static_cast<int>(j.kind)).add(j.normal_stiffness).add(j.shear_stiffness).add(j.tensile_strength).add(j.cohesion)
-          .add(j.friction_angle).add(j.compressive_strength).add(j.fracture_energy_tension).add(j.fracture_energy_shear)
+          .add(j.friction_angle).add(j.compressive_strength).add(j.residual_compressive_strength).add(j.fracture_energy_tension).add(j.fracture_energy_shear)
           .add(j.fracture_energy_compression);
   h.add(cut.dt).add(cut.start_time).add(cut.acceleration);
   h.add(static_cast<int>(o.kinematics)).add(o.axis).add(o.record_level).add(o.levels).add(o.rest);

@@ -205,7 +205,8 @@ inline std::string report_json(const VaultStudyResult& r) {
       .add("axis", std::string(1, o.axis)).add("pga_m_s2", r.input.pga).add("pgv_m_s", r.input.pgv).add("pgd_m", r.input.pgd);
   if (r.input.synthetic) input.add("note", "the built-in synthetic AQA75 stand-in, NOT the AQA recording");
   model.add("kinematics", name(o.kinematics))
-      .add("contacts", o.contacts == model::ContactKinds::general ? "general" : "faces").add("blocks", static_cast<long long>(r.model.blocks))
+      .add("contacts", o.contacts == model::ContactKinds::general ? "general" : "faces")
+      .add("residual_compressive_strength_pa", o.vault.residual_compressive_strength).add("blocks", static_cast<long long>(r.model.blocks))
       .add("deformable_blocks", static_cast<long long>(r.model.deformable_blocks))
       .add("nodes", static_cast<long long>(r.model.nodes)).add("tetrahedra", static_cast<long long>(r.model.tetrahedra))
       .add("contact_points", static_cast<long long>(r.model.contact_points)).add("ties", static_cast<long long>(r.model.ties))

@@ -219,6 +219,20 @@ decltype(auto) with_damping_policy(const VaultStudyOptions& o, std::string& desc
   }
 }
 
+/// What lets blocks of the vault pass through each other, for a run guard's stop on an overlap.
+namespace detail {
+inline std::string pass_through_hint(std::string_view stop, const VaultStudyOptions& o) {
+  if (stop.find(" overlaps by ") == std::string_view::npos) return "";
+  std::string hint;
+  if (o.contacts == model::ContactKinds::faces)
+    hint += "; with --contacts faces, blocks that turn more than 20 degrees lose their contacts (--contacts general keeps them)";
+  if (o.vault.residual_compressive_strength == 0)
+    hint += "; a joint crushed through carries nothing with --residual-compressive-strength 0 (the paper's law): blocks "
+            "that pound past the paper's levels then pass through each other";
+  return hint;
+}
+}  // namespace detail
+
 /// The vault of the options, settled under gravity and handed to f(sim, model, vault, table_block, policy) as a
 /// simulation with the options' damping policy at the dynamic timestep (after partial density scaling). Fills the
 /// model, settling, damping and timestep parts of `r`; with o.out_dir set, writes report.json once settled. Returns
@@ -502,7 +516,7 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
         } catch (const RunawayError& e) {
           history.end_level();  // the history up to the stop is whole: it keeps its name, for the plots
           if (std::string_view(e.what()).starts_with("level ")) throw;  // check_runaway's, which names it already
-          throw RunawayError("level " + label + " %: " + e.what());
+          throw RunawayError("level " + label + " %: " + e.what() + detail::pass_through_hint(e.what(), o));
         }
       }();
       cursor.level_wall_seconds = wall_before + summary.wall_seconds;

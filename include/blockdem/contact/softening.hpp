@@ -103,10 +103,12 @@ struct MasonryJointProperties {
 ///   radial, as in MohrCoulomb. Likewise a residual f_t,r keeps beta_t: the joint then never separates.
 /// - Compression (gap < 0, closure s = -gap): elastic to f_c/3 (as Lourenço and Rots 1997), then a parabola tangent to
 ///   the elastic line that reaches f_c with zero slope at s_p = 5 f_c / (3 k_n), then exponential softening
-///   f_c exp(-beta_c (s - s_p)), which also counts as damage d_c (a crushed joint has lost its bond). Unloading and
-///   reloading follow the secant (the paper: stiffness degradation in tension and compression).
+///   f_c,r + (f_c - f_c,r) exp(-beta_c (s - s_p)), which also counts as damage d_c (a crushed joint has lost its
+///   bond). Unloading and reloading follow the secant (the paper: stiffness degradation in tension and compression).
 ///   beta_c = f_c / (G_c - f_c s_p / 2): G_c is the energy dissipated from the peak on (post-peak envelope plus the
-///   elastic energy at the peak, released on the way down).
+///   elastic energy at the peak, released on the way down) with f_c,r = 0, the paper's law; a residual f_c,r keeps
+///   beta_c, as f_t,r keeps beta_t. The residual is the crushed masonry that still stands between two blocks: with
+///   none, a joint crushed through carries nothing and the blocks pass through each other (collapse runs).
 /// - Elliptic cap: beside the Coulomb limit, |tau| <= sqrt((sigma_cap^2 - sigma^2) / C_s) for sigma > 0, sigma_cap the
 ///   compressive strength still available (f_c until the peak, then the softened one); C_s = 9 (Lourenço and Rots)
 ///   by default, 0 for a cap on sigma alone. The cap itself acts on sigma only; slip on the ellipse drives d_s like any
@@ -126,6 +128,7 @@ struct ElastoSoftening {
     double residual_tensile = 0;          // f_t,r, Pa
     double residual_cohesion = 0;         // c_r, Pa
     double residual_friction_angle = -1;  // phi_r, rad; negative: phi
+    double residual_compressive = 0;      // f_c,r, Pa: what a crushed joint still carries
   };
   struct FractureEnergies {
     double tension = 0;      // G_f^I, J/m^2
@@ -146,6 +149,7 @@ struct ElastoSoftening {
     double residual_tensile_strength = 0;  // Pa
     double residual_cohesion = 0;          // Pa
     double residual_friction_angle = 0;    // rad
+    double residual_compressive_strength = 0;  // Pa
     double tension_fracture_energy = 0;     // G_f^I, J/m^2
     double shear_fracture_energy = 0;       // G_f^II, J/m^2
     double compression_fracture_energy = 0; // G_c, J/m^2
@@ -177,7 +181,7 @@ struct ElastoSoftening {
           friction_angle(s.friction_angle), compressive_strength(s.compressive),
           residual_tensile_strength(s.residual_tensile), residual_cohesion(s.residual_cohesion),
           residual_friction_angle(s.residual_friction_angle < 0 ? s.friction_angle : s.residual_friction_angle),
-          tension_fracture_energy(g.tension), shear_fracture_energy(g.shear), compression_fracture_energy(g.compression),
+          residual_compressive_strength(s.residual_compressive), tension_fracture_energy(g.tension), shear_fracture_energy(g.shear), compression_fracture_energy(g.compression),
           cap_shear_factor(cap_shear), damping_damage_limit(damping_limit) {
       auto check = [](bool ok, const std::string& what) {
         if (!ok) throw InvalidArgument("elasto-softening joint: " + what);
@@ -202,6 +206,9 @@ struct ElastoSoftening {
       check(residual_friction_angle <= friction_angle,
             "residual friction angle must be in [0, friction angle " + std::to_string(friction_angle * 180 / pi) +
                 "] degrees, got " + std::to_string(residual_friction_angle * 180 / pi));
+      check(s.residual_compressive >= 0 && s.residual_compressive < s.compressive,
+            "residual compressive strength must be in [0, compressive strength " + std::to_string(s.compressive) +
+                ") Pa, got " + std::to_string(s.residual_compressive));
       const double tension_elastic = s.tensile * s.tensile / (2.0 * k.normal);
       check(finite_positive(g.tension) && g.tension > tension_elastic,
             "tensile fracture energy G_f^I must be > f_t^2 / (2 k_n) = " + std::to_string(tension_elastic) +
@@ -448,7 +455,7 @@ struct ElastoSoftening {
   }
 
   /// The compression envelope from closure `from` (on it already) to `to`: the hardening parabola up to the peak,
-  /// exponential softening beyond. Returns the compressive stress.
+  /// exponential softening to the residual beyond. Returns the compressive stress.
   static double crush(const Parameters& p, History& h, double to, double from, double& intact, double& dissipated) noexcept {
     const double kn = p.normal_stiffness;
     const double fc = p.compressive_strength;
@@ -465,9 +472,11 @@ struct ElastoSoftening {
     }
     double sigma = sigma_a;
     if (to > a) {
+      // sigma_a is on the envelope, at or above the residual: the part above it decays.
+      const double fr = p.residual_compressive_strength;
       const double decay = std::expm1(-p.compression_softening_rate * (to - a));
-      sigma = sigma_a * (1.0 + decay);
-      work -= sigma_a * decay / p.compression_softening_rate;
+      sigma = fr + (sigma_a - fr) * (1.0 + decay);
+      work += fr * (to - a) - (sigma_a - fr) * decay / p.compression_softening_rate;
       intact *= 1.0 + decay;  // crushing damage d_c joins the combined damage
     }
     dissipated += work - 0.5 * (sigma * to - start_stress * from);
