@@ -99,9 +99,9 @@ struct RunCommand {
                                                 {"general", blockdem::model::ContactKinds::general}, {"faces", blockdem::model::ContactKinds::faces}},
                                             CLI::ignore_case))
         ->capture_default_str();
-    app.add_option("--residual-compressive-strength", o.vault.residual_compressive_strength,
-                   "f_c,r: compressive stress a joint crushed through still carries, Pa [0, f_c); the paper's law has 0, "
-                   "and then blocks that crush their joints pass through each other (runs past its levels)")
+    app.add_option("--collapse-displacement", o.collapse_displacement,
+                   "a monitor point this far from where it settled means the vault collapsed: the level ends there and no "
+                   "further level runs (report.json: collapse), m [0.001, --runaway-displacement]")
         ->capture_default_str();
     app.add_option("--runaway-displacement", o.runaway_displacement,
                    "stop with an error when a monitor point moves farther than this from where it settled, m [0.001, 1e6]")
@@ -241,6 +241,9 @@ int run_study(RunCommand& command) {
                (L.damage.total.new_contacts > 0 ? fmt::format("; {} new contact points", L.damage.total.new_contacts) : std::string()) +
                    (L.damage.loose_blocks > 0 ? fmt::format("; {} blocks without contact (fallen out or in flight)", L.damage.loose_blocks) : std::string()),
                L.energy.balance_error);
+    if (L.collapse.collapsed)
+      fmt::print("  COLLAPSED {:.3f} s into the level: {} moved {:.3f} m from where it settled (--collapse-displacement {:g} m)\n",
+                 L.collapse.time, L.collapse.point, L.collapse.displacement, command.study.collapse_displacement);
     if (L.hold.raises > 0)
       fmt::print("  new contacts held the timestep: {} times, {} nodes and {} blocks made heavier, +{:.3g} kg in all so far\n",
                  L.hold.raises, L.hold.raised_nodes, L.hold.raised_blocks, L.hold.added_mass);
@@ -301,6 +304,10 @@ int main(int argc, char** argv) {
   app.add_option("--pier-height", o.pier_height, "slab top to the tie anchors, m (assumed)")->capture_default_str();
   app.add_option("--anchor-height", o.anchor_height, "tie anchor blocks on the piers, m (assumed)")->capture_default_str();
   app.add_option("--masonry-density", o.masonry_density, "kg/m^3 (assumed; not in the paper)")->capture_default_str();
+  app.add_option("--residual-compressive-strength", o.residual_compressive_strength,
+                 "f_c,r: compressive stress that a joint crushed through still carries, Pa [0, f_c); the paper's law has 0, "
+                 "and then blocks that crush their joints pass through each other (runs past its levels)")
+      ->capture_default_str();
   app.add_option("--contact-tolerance", contacts.tolerance, "contact detection tolerance, m")->capture_default_str();
   app.add_option("--max-cp-area", contacts.max_contact_point_area, "largest area per contact point, m^2, 0 or >= 1e-4 (0: CPs at the corners)")
       ->capture_default_str();

@@ -58,7 +58,7 @@ inline std::uint64_t study_hash(const VaultStudyOptions& o, const model::Model& 
           .add(j.friction_angle).add(j.compressive_strength).add(j.residual_compressive_strength).add(j.fracture_energy_tension).add(j.fracture_energy_shear)
           .add(j.fracture_energy_compression);
   h.add(cut.dt).add(cut.start_time).add(cut.acceleration);
-  h.add(static_cast<int>(o.kinematics)).add(o.axis).add(o.record_level).add(o.levels).add(o.rest);
+  h.add(static_cast<int>(o.kinematics)).add(o.axis).add(o.record_level).add(o.levels).add(o.rest).add(o.collapse_displacement);
   h.add(static_cast<int>(o.damping)).add(o.scheme_zeta()).add(o.frequency_hz).add(o.lower_hz).add(o.upper_hz).add(o.branches);
   h.add(o.target_dt).add(o.default_mass_increase_percent).add(o.settle_tolerance).add(o.settle_max_steps);
   h.add(o.free_vibration).add(o.history_dt).add(o.snapshots_every);

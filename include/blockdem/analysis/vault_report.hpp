@@ -39,6 +39,14 @@ struct LevelResult {
   TimestepHold hold;                // since the start of the dynamic run, at the end of the level (cumulative)
   long long detections = 0;         // contact detections since the start of the dynamic run (cumulative)
   double detection_seconds = 0;     // wall time in them (s, cumulative; since the run was started or resumed)
+  // The vault collapsed in this level (a monitor point moved --collapse-displacement from where it settled): the
+  // level ended then, the point and the time into the level.
+  struct Collapse {
+    bool collapsed = false;
+    std::string point;
+    double time = 0;          // s into the level
+    double displacement = 0;  // m, of that point
+  } collapse;
 
   double steps_per_second() const { return wall_seconds > 0 ? steps / wall_seconds : 0; }
 
@@ -63,6 +71,10 @@ struct LevelResult {
     ar("timestep hold", s.hold);
     ar("detections", s.detections);
     ar("detection wall time", s.detection_seconds);
+    ar("collapsed", s.collapse.collapsed);
+    ar("collapse point", s.collapse.point);
+    ar("collapse time", s.collapse.time);
+    ar("collapse displacement", s.collapse.displacement);
   }
 };
 
@@ -267,6 +279,12 @@ inline std::string report_json(const VaultStudyResult& r) {
         .add("peaks", peaks).add("residual_displacement_m", residual).add("damage", damage)
         .add("energy", energy_json(L.energy)).add("energy_change_over_level", energy_json(delta))
         .add("detections", L.detections).add("detection_seconds", L.detection_seconds);
+    if (L.collapse.collapsed) {
+      JsonObject c;
+      c.add("monitor_point", L.collapse.point).add("time_into_level_s", L.collapse.time)
+          .add("displacement_m", L.collapse.displacement).add("collapse_displacement_m", o.collapse_displacement);
+      l.add("collapse", c);
+    }
     JsonObject hold;  // cumulative since the start of the dynamic run
     hold.add("checks", L.hold.checks).add("raises", L.hold.raises).add("raised_nodes", L.hold.raised_nodes)
         .add("raised_blocks", L.hold.raised_blocks).add("added_mass_kg", L.hold.added_mass)
@@ -293,6 +311,7 @@ inline std::string report_json(const VaultStudyResult& r) {
   out
       .add("damping", damping).add("timestep", timestep).add("levels", levels).add("table4", table)
       .add("interrupted", r.interrupted).add("complete", !r.interrupted && r.levels.size() == o.levels.size())
+      .add("collapsed", !r.levels.empty() && r.levels.back().collapse.collapsed)
       .add("wall_seconds", r.wall_seconds);
   return out.str();
 }

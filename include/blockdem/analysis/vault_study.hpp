@@ -164,6 +164,17 @@ void check_runaway(const History& history, const VaultStudyOptions& o, const std
   }
 }
 
+/// Fills `collapse` when a monitor point's last sample is farther than o.collapse_displacement from where it settled
+/// (relative to the table): the vault has collapsed.
+template <class History>
+void check_collapse(const History& history, const VaultStudyOptions& o, double t_in_level, LevelResult::Collapse& collapse) {
+  for (std::size_t p = 0; p < history.points() && !collapse.collapsed; ++p) {
+    const double d = history.last_displacement(p).norm();
+    if (!(d > o.collapse_displacement)) continue;
+    collapse = {true, history.names()[p], t_in_level, d};
+  }
+}
+
 }  // namespace detail
 
 /// Calls f(policy) with the damping policy of the options (the Maxwell branches fitted here, Sect. 4.2), and
@@ -458,6 +469,7 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
     }
     auto last_checkpoint = clock::now();
     for (; cursor.level < o.levels.size(); ++cursor.level) {
+      if (!r.levels.empty() && r.levels.back().collapse.collapsed) break;  // resumed after the collapse: nothing left
       const double level = o.levels[cursor.level];
       const std::string label = detail::level_label(level);
       LevelResult L;
@@ -476,6 +488,7 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
           history.sample(model, sim.time());
           cursor.next_sample += o.history_dt;
           detail::check_runaway(history, o, label, sim.time() - cursor.level_start);
+          detail::check_collapse(history, o, sim.time() - cursor.level_start, L.collapse);
         }
         if (o.snapshots_every > 0 && !o.out_dir.empty() && sim.time() >= cursor.next_snapshot - 0.5 * sim.timestep()) {
           snapshots.write(label, sim.time(), model, vault, settled_position);
@@ -504,6 +517,7 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
           save();
           last_checkpoint = clock::now();
         }
+        if (L.collapse.collapsed) return false;  // the level ends at the collapse (not an interruption)
         return o.stop_after_steps == 0 || cursor.dynamic_steps < o.stop_after_steps;
       };
       RunOptions run_options;
@@ -522,7 +536,7 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
       cursor.level_wall_seconds = wall_before + summary.wall_seconds;
       L.steps = cursor.level_steps;
       L.wall_seconds = cursor.level_wall_seconds;
-      L.interrupted = summary.interrupted;
+      L.interrupted = summary.interrupted && !L.collapse.collapsed;
       L.simulated = sim.time() - cursor.level_start;
       L.peaks = history.peaks();
       for (std::size_t p = 0; p < history.points(); ++p) L.residual_displacement.push_back(history.last_displacement(p));
@@ -532,7 +546,7 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
       L.energy = sim.energy();
       L.energy_at_start = cursor.energy_at_level_start;
       L.hold = sim.timestep_hold();
-      if (summary.interrupted) {
+      if (L.interrupted) {
         save();  // the level stays open in the checkpoint, which holds the finished levels only
         r.levels.push_back(L);  // the report shows this one as far as it went
         r.interrupted = true;
@@ -550,6 +564,13 @@ inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
         save();
         --cursor.level;
         last_checkpoint = clock::now();
+      }
+      if (L.collapse.collapsed) {
+        if (o.progress)
+          std::fprintf(stderr, "level %s %%: the vault collapsed %.3f s into the level (%s moved %.3g m, beyond "
+                       "--collapse-displacement %.3g m); no further level runs\n", label.c_str(), L.collapse.time,
+                       L.collapse.point.c_str(), L.collapse.displacement, o.collapse_displacement);
+        break;
       }
     }
   }, built);

@@ -105,6 +105,10 @@ struct VaultStudyOptions {
   // A run whose state is not finite, or whose monitor point moves farther than this from where it settled
   // (relative to the table), stops with RunawayError: it diverged, or the block fell off the slab.
   double runaway_displacement = 10;        // m
+  // A monitor point this far from where it settled (relative to the table) means the vault has collapsed: the level
+  // ends there, as a result (LevelResult::collapse), and no further level runs. The paper's levels move the crown by
+  // millimetres; a run on past them (the issue of general contacts) ends here, before its fallen blocks pile up.
+  double collapse_displacement = 0.3;      // m
   double max_speed = 100;                  // m/s: a block or node faster than this stops the run (RunGuard)
 
   // Long runs: out_dir/checkpoint.bin is written at the end of each level, every checkpoint_minutes of wall time
@@ -157,6 +161,9 @@ struct VaultStudyOptions {
     check(resume.empty() || !out_dir.empty(), "--resume needs the output folder of the run it continues (--out)");
     check(runaway_displacement >= 0.001 && runaway_displacement <= 1e6,
           "--runaway-displacement must be in [0.001, 1e6] m, got " + num(runaway_displacement));
+    check(collapse_displacement >= 0.001 && collapse_displacement <= runaway_displacement,
+          "--collapse-displacement must be in [0.001, --runaway-displacement " + num(runaway_displacement) + "] m, got " +
+              num(collapse_displacement));
     check(max_speed >= 0.1 && max_speed <= 1e6, "--max-speed must be in [0.1, 1e6] m/s, got " + num(max_speed));
     check(snapshots_every >= 0 && snapshots_every <= 100, "--snapshots-every must be in [0, 100] s, got " + num(snapshots_every));
   }
