@@ -168,6 +168,7 @@ TEST_CASE("sweep run: a run that leaves every bound fails with its level, time a
   spec.incremental = false;
   auto base = short_coarse_study();
   base.runaway_displacement = 0.001;  // 1 mm: the 1000 % level moves the crown farther than that within 0.1 s
+  base.collapse_displacement = 0.001;  // at the runaway bound, which is checked first
   const auto cases = expand_sweep(spec, base);
   SweepRunOptions run;
   run.out_dir = dir.string();
@@ -178,6 +179,27 @@ TEST_CASE("sweep run: a run that leaves every bound fails with its level, time a
   CHECK(loud.status == CaseStatus::failed);
   CHECK(loud.message.find("level 1000 %") != std::string::npos);
   CHECK(loud.message.find("beyond --runaway-displacement 0.001 m") != std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("sweep run: a case whose vault collapses is done, and its row says at which level (an IDA's end)") {
+  const test::OneThread one_thread;
+  const auto dir = fresh_folder("blockdem_sweep_collapse");
+  SweepSpec spec;
+  spec.schemes = {SweepScheme{DampingScheme::none, {}, {}, {}, {}}};
+  spec.levels = {75, 1000};
+  auto base = short_coarse_study();
+  base.collapse_displacement = 0.001;  // 1 mm stands for the collapse: 1000 % moves the crown farther within 0.1 s
+  const auto cases = expand_sweep(spec, base);
+  REQUIRE(cases.size() == 1);  // incremental: one case, 75 % then 1000 %
+  SweepRunOptions run;
+  run.out_dir = dir.string();
+  run.progress = false;
+  const auto row = run_sweep_case(cases[0], run);
+  CHECK(row.status == CaseStatus::done);
+  CHECK(row.message.find("collapsed at 1000 %") != std::string::npos);
+  const auto summary = test::file_contents(dir / "cases" / cases[0].id / "case.json");
+  CHECK(summary.find("\"collapsed\": true") != std::string::npos);
   std::filesystem::remove_all(dir);
 }
 

@@ -6,6 +6,7 @@
 // continues from its checkpoint. The summary (summary.csv, summary.json in OUT) is one row per case in the order of
 // the expansion, so it is the same however the cases were shared out (one process, MPI ranks, a job array).
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -226,7 +227,7 @@ inline void fill_row(CaseRow& row, const SweepCase& c, const VaultStudyResult* r
       if (c.measure == IntensityMeasure::sa) q.add("input_sa_g", im.sa * l.level);
       q.add("steps", l.steps).add("wall_seconds", l.wall_seconds).add("peaks", peaks)
           .add("cracked", l.damage.total.cracked).add("crushed", l.damage.total.crushed).add("damaged", l.damage.total.damaged)
-          .add("energy_balance_error", l.energy.balance_error);
+          .add("energy_balance_error", l.energy.balance_error).add("collapsed", l.collapse.collapsed);
       levels.push_back(q);
     }
   j.add("levels", levels);
@@ -329,8 +330,16 @@ inline CaseRow run_sweep_case(const SweepCase& c, const SweepRunOptions& run, co
     ran = true;
     row.status = result.interrupted ? CaseStatus::interrupted : CaseStatus::done;
     if (result.interrupted) row.message = "stopped; the next run of the sweep continues it from its checkpoint";
-    if (!run.measured.empty() && !result.interrupted) {
-      const double level = run.measured_level > 0 ? run.measured_level : o.levels.back();
+    const bool collapsed = !result.levels.empty() && result.levels.back().collapse.collapsed;
+    if (collapsed)  // an IDA's end: the levels after this one were not run
+      row.message = "collapsed at " + detail::level_label(result.levels.back().level) + " %, " +
+                    models::detail::num(result.levels.back().collapse.time) + " s into the level";
+    const double level = run.measured_level > 0 ? run.measured_level : o.levels.back();
+    // After a collapse, the measured level is compared only if it ran whole, before the collapse.
+    const bool level_run = std::any_of(result.levels.begin(), result.levels.end(), [&](const LevelResult& l) {
+      return l.level == level && !l.collapse.collapsed;
+    });
+    if (!run.measured.empty() && !result.interrupted && (!collapsed || level_run)) {
       const auto simulated = read_csv_table(dir + "/history_" + detail::level_label(level) + ".csv");
       compared = compare_tables(simulated, read_csv_table(run.measured));
       try {

@@ -337,14 +337,21 @@ inline io::BlockFields block_fields(const model::Model& model, const models::Cro
   io::BlockFields fields;
   auto& component = fields["component"];
   auto& displacement = fields["displacement"];
+  // Relative to the table (the slab), as the histories: what the structure did, not where the table took it.
+  Vec3 table = Vec3::Zero();
+  for (std::size_t i = 0; i < model.bodies.size(); ++i)
+    if (vault.blocks[i].component == models::Component::slab) {
+      table = model.bodies.position[i] - reference[i];
+      break;
+    }
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
     component.push_back(static_cast<double>(models::index(vault.blocks[i].component)));
-    displacement.push_back((model.bodies.position[i] - reference[i]).norm());
+    displacement.push_back((model.bodies.position[i] - reference[i] - table).norm());
   }
   return fields;
 }
 
-/// At the end of a level: damage_<level>.vtu (blocks with their component, displacement since settling and the
+/// At the end of a level: damage_<level>.vtu (blocks with their component, displacement since settling relative to the table and the
 /// largest damage of their contact points), contacts_<level>.vtu (the contact points with damage, gap, stresses) and
 /// contacts_<level>.csv (the same as a table, with the components on each side, for the plots).
 template <class Sim>
