@@ -91,3 +91,39 @@ TEST_CASE("contact detection: a block's redetection distance is half its clearan
   const auto w = model::redetection_distances(b, b.position, b.orientation, settings, [](std::size_t i) { return i == 2; });
   CHECK(w[2] == doctest::Approx(0.5 * (0.3 - settings.tolerance)).epsilon(1e-12));
 }
+
+TEST_CASE("detection: a block on another of its own size, turned and shifted by less than the tolerance, has CPs at "
+          "the four corners only") {
+  // Two equal 0.3 m faces 0.1 mm apart, the upper turned 0.2 mrad and shifted 0.014 mm: their overlap also has a
+  // vertex where each pair of nearly parallel edges crosses, offset / angle along them (here some 5 cm), a place
+  // that jumps between detections. Below a quarter of the tolerance the overlap keeps its corners, each with a
+  // quarter of the area.
+  model::Model m;
+  m.add_block(geometry::make_box(Vec3(-0.15, -0.15, -1), Vec3(0.15, 0.15, 0)), 5570, "pier", 0, model::Motion::fixed);
+  const auto top = m.add_block(geometry::make_box(Vec3(-0.15, -0.15, 1e-4), Vec3(0.15, 0.15, 0.2001)), 2000, "anchor", 1);
+  auto& b = m.bodies;
+  b.orientation[top] = Quaternion(Eigen::AngleAxisd(2e-4, Vec3::UnitZ()));
+  b.rotation[top] = b.orientation[top].toRotationMatrix();
+  b.position[top] += Vec3(1e-5, -1e-5, 0);
+  const auto c = model::detect_contacts(b, model::ContactSettings{});
+  REQUIRE(c.size() == 4);
+  double area = 0;
+  for (const auto& k : c) {
+    area += k.area;
+    CHECK(k.area == doctest::Approx(0.0225).epsilon(1e-3));
+    CHECK(std::abs(std::abs(k.position.x()) - 0.15) < 1e-4);
+    CHECK(std::abs(std::abs(k.position.y()) - 0.15) < 1e-4);
+  }
+  CHECK(area == doctest::Approx(0.09).epsilon(1e-4));
+}
+
+TEST_CASE("polygons: a vertex where the boundary hardly turns is dropped within the distance, a sliver's corners are kept") {
+  using geometry::Polygon2;
+  // A square with a vertex 1e-5 off the middle of its bottom edge: dropped at 1e-4, kept at 1e-6.
+  const Polygon2 square{{0, 0}, {0.15, -1e-5}, {0.3, 0}, {0.3, 0.3}, {0, 0.3}};
+  CHECK(geometry::drop_shallow_vertices(square, 1e-4, 0.35).size() == 4);
+  CHECK(geometry::drop_shallow_vertices(square, 1e-6, 0.35).size() == 5);
+  // A sliver 1e-5 wide: its corners turn by 90 degrees and stay, whatever the distance.
+  const Polygon2 sliver{{0, 0}, {0.3, 0}, {0.3, 1e-5}, {0, 1e-5}};
+  CHECK(geometry::drop_shallow_vertices(sliver, 1e-3, 0.35).size() == 4);
+}

@@ -83,6 +83,37 @@ inline Polygon2 clip_convex(Polygon2 subject, const Polygon2& clip) {
   return subject;
 }
 
+/// Drops the vertices of a convex polygon that lie within `distance` of the chord between their two neighbours
+/// where its boundary turns by less than `max_turn` (rad), the shallowest first, keeping three at least. Such a
+/// vertex is where two nearly parallel edges cross: two faces of the same size that nearly coincide (a block on
+/// another of its own size) have their edges an offset d and an angle a apart, and cross at d / a along them, a
+/// place that jumps from one detection to the next while the polygon itself hardly changes. Below `distance` the
+/// polygon keeps its corners only, which stay where they are.
+inline Polygon2 drop_shallow_vertices(Polygon2 p, double distance, double max_turn) {
+  const double cos_turn = std::cos(max_turn);
+  while (p.size() > 3) {
+    std::size_t shallowest = p.size();
+    double smallest = distance;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Point2& prev = p[(i + p.size() - 1) % p.size()];
+      const Point2& v = p[i];
+      const Point2& next = p[(i + 1) % p.size()];
+      const double chord = std::hypot(next[0] - prev[0], next[1] - prev[1]);
+      const double in0 = v[0] - prev[0], in1 = v[1] - prev[1], out0 = next[0] - v[0], out1 = next[1] - v[1];
+      const double lengths = std::hypot(in0, in1) * std::hypot(out0, out1);
+      if (!(chord > 0) || !(lengths > 0) || in0 * out0 + in1 * out1 < cos_turn * lengths) continue;
+      const double deviation = std::abs(cross2(prev, next, v)) / chord;
+      if (deviation < smallest) {
+        smallest = deviation;
+        shallowest = i;
+      }
+    }
+    if (shallowest == p.size()) break;
+    p.erase(p.begin() + static_cast<std::ptrdiff_t>(shallowest));
+  }
+  return p;
+}
+
 /// Barycentric coordinates of p in the triangle t.
 inline std::array<double, 3> barycentric2(const Polygon2& t, const Point2& p) {
   const double den = cross2(t[0], t[1], t[2]);

@@ -260,7 +260,11 @@ inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, 
         if (reverse) std::reverse(poly.begin(), poly.end());
         return poly;
       };
-      const auto overlap = detail::clip_convex(project(world[a], fa, false), project(world[b], fb, true));
+      // Corners only where edges of the two faces nearly coincide (geometry::drop_shallow_vertices): features
+      // finer than a quarter of the tolerance are not resolved, and the CPs stay where they are between detections.
+      const auto overlap = geometry::drop_shallow_vertices(
+          detail::clip_convex(project(world[a], fa, false), project(world[b], fb, true)), 0.25 * settings.tolerance,
+          settings.max_normal_angle);
       if (overlap.size() < 3 || detail::polygon_area(overlap) <= 1e-12 * world[a].face_area(fa)) continue;
 
       const Vec3 na = planes[a].normal[fa], nb = planes[b].normal[fb];
