@@ -272,9 +272,9 @@ TEST_CASE("vault study: the settled vault in free decay has the damping ratio of
 
 TEST_CASE("vault study: with general contacts the vault runs the paper's levels close to the face-to-face model") {
   // General contacts add the places where blocks of the vault as built touch along an edge only (the faceted groins
-  // and infill: 111 more contact points on this coarse vault, 450 on the paper's), which stiffen it. The issue asked
-  // for OC1 within 1 %; measured on 2 s of the strong part, 25, 50 and 75 % in turn: +1.6 %, -10.5 %, -1.6 % (the
-  // paper's vault, 1 s: -1.8, -2.1, -5.3 %, README). Checked here: the same within 12 %, and more contact points.
+  // and infill: 111 more contact points on this coarse vault, 408 on the paper's), which stiffen it. The issue asked
+  // for OC1 within 1 %; measured on 2 s of the strong part, 25, 50 and 75 % in turn: +1.3 %, -7.6 %, -2.3 % (the
+  // paper's vault, 1 s: -1.8, -2.1, -1.0 %, README). Checked here: the same within 10 %, and more contact points.
   const OneThread one_thread;
   std::vector<double> peaks[2];
   std::size_t points[2] = {0, 0};
@@ -294,7 +294,7 @@ TEST_CASE("vault study: with general contacts the vault runs the paper's levels 
   for (std::size_t level = 0; level < 3; ++level) {
     MESSAGE("level " << level << ": peak OC1_uy faces " << peaks[0][level] << " m, general " << peaks[1][level] << " m");
     CHECK(peaks[0][level] > 1e-4);
-    CHECK(peaks[1][level] == test::approx(peaks[0][level]).epsilon(0.12));
+    CHECK(peaks[1][level] == test::approx(peaks[0][level]).epsilon(0.10));
   }
 }
 
