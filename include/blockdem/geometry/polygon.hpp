@@ -90,23 +90,27 @@ inline Polygon2 clip_convex(Polygon2 subject, const Polygon2& clip) {
 /// place that jumps from one detection to the next while the polygon itself hardly changes. Below `distance` the
 /// polygon keeps its corners only, which stay where they are.
 inline Polygon2 drop_shallow_vertices(Polygon2 p, double distance, double max_turn) {
+  // Squared forms, without roots: the deviation |(next - prev) x (v - prev)| / |next - prev| < distance, and the
+  // turn at v below max_turn, (v - prev) . (next - v) >= cos(max_turn) |v - prev| |next - v|.
   const double cos_turn = std::cos(max_turn);
+  const double cos2 = cos_turn * cos_turn;
   while (p.size() > 3) {
     std::size_t shallowest = p.size();
-    double smallest = distance;
+    double smallest = 1.0;  // deviation^2 / distance^2
     for (std::size_t i = 0; i < p.size(); ++i) {
       const Point2& prev = p[(i + p.size() - 1) % p.size()];
       const Point2& v = p[i];
       const Point2& next = p[(i + 1) % p.size()];
-      const double chord = std::hypot(next[0] - prev[0], next[1] - prev[1]);
       const double in0 = v[0] - prev[0], in1 = v[1] - prev[1], out0 = next[0] - v[0], out1 = next[1] - v[1];
-      const double lengths = std::hypot(in0, in1) * std::hypot(out0, out1);
-      if (!(chord > 0) || !(lengths > 0) || in0 * out0 + in1 * out1 < cos_turn * lengths) continue;
-      const double deviation = std::abs(cross2(prev, next, v)) / chord;
-      if (deviation < smallest) {
-        smallest = deviation;
-        shallowest = i;
-      }
+      const double c0 = in0 + out0, c1 = in1 + out1;  // the chord next - prev
+      const double chord2 = c0 * c0 + c1 * c1;
+      const double cross = c0 * in1 - c1 * in0;
+      const double ratio = cross * cross / (distance * distance * chord2);
+      if (!(ratio < smallest)) continue;  // also a chord of zero length
+      const double dot = in0 * out0 + in1 * out1;
+      if (dot < 0 || dot * dot < cos2 * (in0 * in0 + in1 * in1) * (out0 * out0 + out1 * out1)) continue;
+      smallest = ratio;
+      shallowest = i;
     }
     if (shallowest == p.size()) break;
     p.erase(p.begin() + static_cast<std::ptrdiff_t>(shallowest));
