@@ -35,12 +35,14 @@ struct RunOptions {
 struct RunSummary {
   long long steps = 0;
   double wall_seconds = 0;
-  bool interrupted = false;
+  bool interrupted = false;  // stopped before t_end: by a signal, or by each_step
+  bool stopped_by_caller = false;  // each_step returned false (the caller says why)
 };
 
 /// Steps `simulation` until its time reaches `t_end` (s; the last step may end half a step short of it), calling
-/// `each_step()` after every step (for recorders; if it returns bool, false stops the run as an interrupt does).
-/// Stops early, with `interrupted` set, on SIGINT/SIGTERM once stop_on_interrupt() was called. The number of steps
+/// `each_step()` after every step (for recorders; if it returns bool, false stops the run as an interrupt does, and
+/// the caller reports why). Stops early, with `interrupted` set, on SIGINT/SIGTERM once stop_on_interrupt() was
+/// called, and says so on stderr. The number of steps
 /// depends only on the simulation's time and t_end, so a run continued from a checkpoint ends on the same step.
 template <class Simulation, class EachStep = void (*)()>
 RunSummary run_until(Simulation& simulation, double t_end, EachStep each_step = [] {}, RunOptions options = {}) {
@@ -59,7 +61,7 @@ RunSummary run_until(Simulation& simulation, double t_end, EachStep each_step = 
     ++summary.steps;
     if constexpr (std::is_same_v<decltype(each_step()), bool>) {
       if (!each_step()) {
-        summary.interrupted = true;
+        summary.interrupted = summary.stopped_by_caller = true;
         break;
       }
     } else {
@@ -80,7 +82,7 @@ RunSummary run_until(Simulation& simulation, double t_end, EachStep each_step = 
   }
   summary.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
   if (options.progress && summary.wall_seconds > 1.0) std::fprintf(stderr, "\n");
-  if (summary.interrupted) std::fprintf(stderr, "%s: stopped at t = %.4f s; results so far are kept\n", options.label, simulation.time());
+  if (summary.interrupted && !summary.stopped_by_caller) std::fprintf(stderr, "%s: stopped at t = %.4f s; results so far are kept\n", options.label, simulation.time());
   return summary;
 }
 
