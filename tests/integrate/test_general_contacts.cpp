@@ -99,6 +99,49 @@ TEST_CASE("general contacts: a cube on an edge, on a corner and edge across edge
   }
 }
 
+TEST_CASE("general contacts: blocks that touch along a line where four joints meet (a groin) get no CPs until one "
+          "presses its edge into the other") {
+  // In the x-z plane, 1 m deep along y: A left of x = 0 below a face that rises 2 in 1 to the left from the line (the
+  // y axis), B right of x = 0 above a level face. Their faces on x = 0 lie in one plane and meet at the line end to
+  // end, like the courses of two webs at a groin; B's face there meets A's steep face at 27 deg. Every plane through
+  // the line between them has the same gap, up to rounding or the joints' closure as a vault settles.
+  const auto block = [](const std::vector<Eigen::Vector2d>& section, const Vec3& shift) {
+    std::vector<Vec3> base;
+    for (const auto& p : section) base.push_back(Vec3(p.x(), 0, p.y()) + shift);
+    return geometry::make_prism(base, Vec3(0, 1, 0));
+  };
+  const Vec3 n_steep = Vec3(2, 0, 1).normalized();  // A's steep face, outward
+  const auto pair = [&](const Vec3& shift) {
+    model::Model m;
+    m.add_block(block({{-1, -1}, {0, -1}, {0, 0}, {-1, 2}}, Vec3::Zero()), 2000, "A", 0, model::Motion::fixed);
+    m.add_block(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, shift), 2000, "B", 0);
+    return m;
+  };
+  model::ContactSettings general, faces;
+  faces.kinds = model::ContactKinds::faces;
+  // B 2 um off along the normal of A's steep face: that face's plane has the larger gap (2 um against 1.8 um on
+  // x = 0), but the face-to-face plane x = 0, within a hundredth of the tolerance of it, is the common plane, and
+  // the faces there only meet at the line: no CP. Edge CPs on A's steep face would tie B to A like a bed joint.
+  for (const double opening : {0.0, 2e-6}) {
+    const auto m = pair(opening * n_steep);
+    CHECK(model::detect_contacts(m.bodies, general).empty());
+    CHECK(model::detect_contacts(m.bodies, faces).empty());
+  }
+  // B pressed into A 0.1 mm to the left and 0.1 mm up: 45 um into the plane of A's steep face and 100 um into the
+  // plane x = 0, so the steep face's plane is the common plane by far, and B's edge gets its CPs there.
+  const auto pressed = pair(Vec3(-1e-4, 0, 1e-4));
+  const auto c = model::detect_contacts(pressed.bodies, general);
+  REQUIRE(!c.empty());
+  double deepest = 0;
+  for (const auto& k : c) {
+    CHECK((k.normal - n_steep).norm() < 1e-9);
+    CHECK(k.area > 0);
+    deepest = std::min(deepest, k.gap);
+  }
+  CHECK(deepest == test::approx(-1e-4 / std::sqrt(5.0)).epsilon(1e-6));  // B's edge, 45 um into A
+  CHECK(model::detect_contacts(pressed.bodies, faces).empty());
+}
+
 TEST_CASE("general contacts: a cube dropped on an edge, on a corner and edge across edge neither passes into what it "
           "lands on nor makes energy") {
   // Reference: energy conservation, kinetic + elastic + slip = work of gravity, with the energy that re-detection

@@ -169,10 +169,10 @@ TEST_CASE("cross vault: no two blocks overlap, the vault is connected and every 
   const auto contacts = model::detect_contacts(c.model.bodies, faces, &deepest);
   CHECK(contacts.size() == c.check.contact_points);
   CHECK(deepest.second > -1e-9);
-  // General contacts add those where blocks as built touch along an edge only (faceted groins and infill), every
-  // one of them closed (gap 0), none where a face-to-face contact is.
+  // General contacts add those where blocks as built stand on an edge (the infill slivers at the anchors), closed
+  // (gap 0), none where a face-to-face contact is.
   const auto general = model::detect_contacts(c.model.bodies, model::ContactSettings{}, &deepest);
-  CHECK(general.size() == 14698);
+  CHECK(general.size() == 14306);
   CHECK(deepest.second > -1e-9);
   double widest = 0;
   for (const auto& k : general) widest = std::max(widest, std::abs(k.gap));
@@ -341,11 +341,13 @@ TEST_CASE("cross vault: the model loads into one simulation with the three joint
   MESSAGE("cross vault, rigid blocks: critical timestep " << dt << " s, " << sim.contact_points() << " CPs");
 }
 
-TEST_CASE("cross vault: general contacts keep every face-to-face contact point of the vault as built and add edge ones") {
+TEST_CASE("cross vault: general contacts keep every face-to-face contact point of the vault as built and add only "
+          "the infill slivers standing on an edge") {
   // What general contacts change at the paper's small rotations: not the joints, found face to face exactly as
-  // before (the same points, areas, normals and gaps, bit for bit), but the places where blocks of the faceted
-  // groins and infill touch along an edge only, pairs without a face-to-face contact. Those stiffen the vault and
-  // move OC1 by 1-2 % at the paper's levels (README).
+  // before (the same points, areas, normals and gaps, bit for bit). The courses of two webs meet at the groins along
+  // lines where four joints meet; those pairs touch on a line only and get no CP (their face-to-face plane has no
+  // overlap), where a plane picked by rounding gave 408 edge CPs with 1.1 % of the area and moved OC1 by 1-2 %. What
+  // is left are the slivers of infill at the four tie anchors, each standing on an edge on its anchor: 16 CPs.
   const auto& m = checked_specimen().model;
   model::ContactSettings faces, general;
   faces.kinds = model::ContactKinds::faces;
@@ -371,6 +373,6 @@ TEST_CASE("cross vault: general contacts keep every face-to-face contact point o
                    << 100 * added_area / area << " % of the area");
   CHECK(same == f.size());
   CHECK(same + added == g.size());
-  CHECK(added > 0);
-  CHECK(added_area < 0.02 * area);
+  CHECK(added == 16);
+  CHECK(added_area < 1e-3 * area);
 }

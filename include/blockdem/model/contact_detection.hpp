@@ -11,7 +11,9 @@
 // directions too, and the CPs are drawn from the faces through each block's supporting vertex, edge or face. Only
 // the CPs within the tolerance of both blocks are kept, so a vertex-face contact has one CP at the vertex, an
 // edge-face contact two at the ends of the edge's part over the face, an edge-edge contact one at the crossing; as a
-// block turns from face-face to edge-face (rocking) its CPs stay where they were, and keep their histories.
+// block turns from face-face to edge-face (rocking) its CPs stay where they were, and keep their histories. Where a
+// face-to-face plane is as good as the best one (blocks that meet along a line where four joints cross), it is the
+// common plane.
 
 #include <algorithm>
 #include <array>
@@ -158,6 +160,31 @@ inline std::pair<double, std::size_t> max_face_separation(const FacePlanes& p, c
   return {best, best_face};
 }
 
+/// A face plane of A or of B with a separation of at least `floor` whose faces are face to face (the other block's
+/// best-aligned face within acos(cos_max) of it), the one with the largest separation: its normal (from A to B) in
+/// `normal` and its separation in `separation`. False if there is none.
+inline bool aligned_face_plane(const FacePlanes& pa, const geometry::ConvexPolyhedron& a, const FacePlanes& pb,
+                               const geometry::ConvexPolyhedron& b, double floor, double cos_max, Vec3& normal,
+                               double& separation) {
+  bool found = false;
+  const auto consider = [&](const FacePlanes& p, const geometry::ConvexPolyhedron& other, const FacePlanes& q, double sign) {
+    for (std::size_t f = 0; f < p.normal.size(); ++f) {
+      double sep = std::numeric_limits<double>::infinity();
+      for (const auto& v : other.vertices) sep = std::min(sep, p.normal[f].dot(v - p.point[f]));
+      if (sep < floor || (found && sep <= separation)) continue;
+      double alignment = -2;  // of the other block's best-aligned face with -normal[f]
+      for (const auto& n : q.normal) alignment = std::max(alignment, -n.dot(p.normal[f]));
+      if (alignment < cos_max) continue;
+      found = true;
+      separation = sep;
+      normal = sign * p.normal[f];
+    }
+  };
+  consider(pa, b, pb, 1.0);
+  consider(pb, a, pa, -1.0);
+  return found;
+}
+
 inline std::size_t best_aligned_face(const FacePlanes& p, const Vec3& direction) {
   std::size_t best = 0;
   double alignment = -2;
@@ -219,15 +246,29 @@ inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, 
       Vec3 n_common = sep_a >= sep_b ? planes[a].normal[face_a] : Vec3(-planes[b].normal[face_b]);
       std::size_t fa = detail::best_aligned_face(planes[a], n_common);
       std::size_t fb = detail::best_aligned_face(planes[b], -n_common);
-      const bool face_to_face =
+      bool face_to_face =
           planes[a].normal[fa].dot(n_common) >= cos_max && -planes[b].normal[fb].dot(n_common) >= cos_max;
-      // Not face to face: the plane may be that of an edge of each (edge-edge), whose separation is the truer one.
-      if (!face_to_face && general)
-        if (const CommonPlane e = best_edge_edge_plane(world[a], edges_of(a), world[b], edges_of(b)); e.separation > separation) {
+      if (!face_to_face && general) {
+        // Blocks that touch along a line only (four blocks meeting at a corner line, as the courses of two webs at
+        // a groin) have nearly the same gap on every plane through that line: the face-to-face one among them is
+        // their common plane, and its overlap, a line, makes no CP. Their neighbours across the joints carry what
+        // passes there. Otherwise rounding, and the joints' own closure as the vault settles, would pick a plane
+        // that a face meets at an angle, and the pair would get edge CPs as stiff as a joint's. Planes within a
+        // hundredth of the tolerance count as equal: a pair pressed together along the line gets its edge CPs once
+        // they overlap by about that much.
+        if (detail::aligned_face_plane(planes[a], world[a], planes[b], world[b], separation - 0.01 * settings.tolerance,
+                                       cos_max, n_common, separation)) {
+          face_to_face = true;
+          fa = detail::best_aligned_face(planes[a], n_common);
+          fb = detail::best_aligned_face(planes[b], -n_common);
+        } else if (const CommonPlane e = best_edge_edge_plane(world[a], edges_of(a), world[b], edges_of(b));
+                   e.separation > separation) {
+          // Not face to face: the plane may be that of an edge of each (edge-edge), whose separation is the truer one.
           separation = e.separation;
           n_common = e.normal;
           if (separation > settings.tolerance) continue;
         }
+      }
       if (deepest && separation < deepest->second) *deepest = {{a, b}, separation};
       if (!face_to_face) {
         if (!general) continue;
