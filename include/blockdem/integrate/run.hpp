@@ -42,8 +42,8 @@ struct RunSummary {
 /// Steps `simulation` until its time reaches `t_end` (s; the last step may end half a step short of it), calling
 /// `each_step()` after every step (for recorders; if it returns bool, false stops the run as an interrupt does, and
 /// the caller reports why). Stops early, with `interrupted` set, on SIGINT/SIGTERM once stop_on_interrupt() was
-/// called, and says so on stderr. The number of steps
-/// depends only on the simulation's time and t_end, so a run continued from a checkpoint ends on the same step.
+/// called, and says so on stderr. The number of steps depends only on the simulation's time and t_end, so a run
+/// continued from a checkpoint ends on the same step.
 template <class Simulation, class EachStep = void (*)()>
 RunSummary run_until(Simulation& simulation, double t_end, EachStep each_step = [] {}, RunOptions options = {}) {
   using clock = std::chrono::steady_clock;
