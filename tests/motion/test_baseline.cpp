@@ -96,6 +96,8 @@ TEST_CASE("baseline: specifications parse, chain and name their errors") {
   CHECK_THROWS_WITH_AS(parse_baseline("smooth"), doctest::Contains("'smooth' is not a baseline step (allowed: none, mean"),
                        InvalidArgument);
   CHECK_THROWS_WITH_AS(parse_baseline("poly:x"), doctest::Contains("'poly:x' has a bad number"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(parse_baseline("mean,"), doctest::Contains("'mean,' ends with a comma, an empty step"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(parse_baseline("mean,,poly:1"), doctest::Contains("'' is not a baseline step"), InvalidArgument);
 
   const auto record = sampled(0.01, 1000, [](double t) { return 1.0 + t; });
   const auto corrected = correct_baseline(record, parse_baseline("poly:1"));

@@ -75,6 +75,8 @@ inline std::vector<BaselineStep> parse_baseline(std::string_view spec) {
     if (s.empty() || end != s.c_str() + s.size() || !std::isfinite(value)) fail(part, "has a bad number");
     return value;
   };
+  // Every comma joins two steps: "mean," or "mean,,highpass:0.1" name an empty one.
+  if (!spec.empty() && spec.back() == ',') fail(spec, "ends with a comma, an empty step");
   while (!spec.empty()) {
     const auto comma = spec.find(',');
     const std::string_view part = spec.substr(0, comma);
