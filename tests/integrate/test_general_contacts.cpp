@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <set>
 #include <vector>
 
 #include "blockdem/analysis/rocking.hpp"
@@ -54,6 +55,13 @@ Drop cube_drop(Landing landing, double drop) {
   d.cube = d.model.add_block(cube.transformed(turn, Vec3(0, 0, drop - lowest)), 2000, "cube", 1);
   d.model.gravity = Vec3(0, 0, -9.81);
   return d;
+}
+
+/// A prism 1 m deep along y over a section in the x-z plane (x, z), moved by `shift`.
+geometry::ConvexPolyhedron section_prism(const std::vector<Eigen::Vector2d>& section, const Vec3& shift = Vec3::Zero()) {
+  std::vector<Vec3> base;
+  for (const auto& p : section) base.push_back(Vec3(p.x(), 0, p.y()) + shift);
+  return geometry::make_prism(base, Vec3(0, 1, 0));
 }
 
 /// Undamped dry joints (no tension, friction 45 deg), stiff: the only losses are slip and what re-detection does.
@@ -105,16 +113,11 @@ TEST_CASE("general contacts: blocks that touch along a line where four joints me
   // y axis), B right of x = 0 above a level face. Their faces on x = 0 lie in one plane and meet at the line end to
   // end, like the courses of two webs at a groin; B's face there meets A's steep face at 27 deg. Every plane through
   // the line between them has the same gap, up to rounding or the joints' closure as a vault settles.
-  const auto block = [](const std::vector<Eigen::Vector2d>& section, const Vec3& shift) {
-    std::vector<Vec3> base;
-    for (const auto& p : section) base.push_back(Vec3(p.x(), 0, p.y()) + shift);
-    return geometry::make_prism(base, Vec3(0, 1, 0));
-  };
   const Vec3 n_steep = Vec3(2, 0, 1).normalized();  // A's steep face, outward
   const auto pair = [&](const Vec3& shift) {
     model::Model m;
-    m.add_block(block({{-1, -1}, {0, -1}, {0, 0}, {-1, 2}}, Vec3::Zero()), 2000, "A", 0, model::Motion::fixed);
-    m.add_block(block({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, shift), 2000, "B", 0);
+    m.add_block(section_prism({{-1, -1}, {0, -1}, {0, 0}, {-1, 2}}), 2000, "A", 0, model::Motion::fixed);
+    m.add_block(section_prism({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, shift), 2000, "B", 0);
     return m;
   };
   model::ContactSettings general, faces;
@@ -140,6 +143,31 @@ TEST_CASE("general contacts: blocks that touch along a line where four joints me
   }
   CHECK(deepest == test::approx(-1e-4 / std::sqrt(5.0)).epsilon(1e-6));  // B's edge, 45 um into A
   CHECK(model::detect_contacts(pressed.bodies, faces).empty());
+}
+
+TEST_CASE("general contacts: blocks that meet edge to edge with a third block between them, face to face with "
+          "both, get no CPs; without it, or an edge on a face, they do") {
+  // Three wedges around the y axis in the x-z plane, as blocks of neighbouring webs meet at a vault's crown line: A
+  // from 90 to 135 deg, C from 45 to 90 deg, B from 0 to 45 deg. A and B touch along the axis only, an edge of each,
+  // with no face-to-face plane between them (A's face on x = 0 meets B's diagonal face at 45 deg); C fills the wedge
+  // between them and meets both face to face, and carries what passes there.
+  const auto a = section_prism({{0, 0}, {0, 1}, {-1, 1}});
+  const auto c = section_prism({{0, 0}, {1, 1}, {0, 1}});
+  const auto b = section_prism({{0, 0}, {1, 0}, {1, 1}});
+  model::ContactSettings general;
+  const auto pairs = [&](bool with_c) {
+    model::Model m;
+    m.add_block(a, 2000, "A", 0);
+    m.add_block(b, 2000, "B", 0, model::Motion::fixed);
+    if (with_c) m.add_block(c, 2000, "C", 0);
+    std::set<std::pair<std::size_t, std::size_t>> found;
+    for (const auto& k : model::detect_contacts(m.bodies, general)) found.insert({k.a, k.b});
+    return found;
+  };
+  const std::set<std::pair<std::size_t, std::size_t>> with_c{{0, 2}, {1, 2}};  // A-C and B-C, not A-B
+  CHECK(pairs(true) == with_c);
+  const std::set<std::pair<std::size_t, std::size_t>> alone{{0, 1}};  // A and B alone: their edges' contact
+  CHECK(pairs(false) == alone);
 }
 
 TEST_CASE("general contacts: a cube dropped on an edge, on a corner and edge across edge neither passes into what it "

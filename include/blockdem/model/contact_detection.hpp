@@ -13,7 +13,7 @@
 // edge-face contact two at the ends of the edge's part over the face, an edge-edge contact one at the crossing; as a
 // block turns from face-face to edge-face (rocking) its CPs stay where they were, and keep their histories. Where a
 // face-to-face plane is as good as the best one (blocks that meet along a line where four joints cross), it is the
-// common plane.
+// common plane; blocks that meet edge to edge with a third block between them, face to face with both, get no CPs.
 
 #include <algorithm>
 #include <array>
@@ -198,6 +198,60 @@ inline std::size_t best_aligned_face(const FacePlanes& p, const Vec3& direction)
   return best;
 }
 
+/// Drops the edge CPs (out[first, last) for each range) of two blocks that touch edge to edge along a line where a
+/// third block meets both face to face: eight blocks meeting at the crown line of a vault, where a block of each web
+/// lies between blocks of the neighbouring webs. The third block fills the wedge between them and carries what
+/// passes there; edge CPs would tie them across it like a joint. Every CP must lie on an edge of both blocks and on
+/// the third block, within `tolerance`: an edge standing on a face (a sliver of infill on its anchor, a rocking block)
+/// keeps its CPs. `joints`: the block pairs in face-to-face contact (a < b).
+inline void drop_edge_contacts_across_a_block(std::vector<ContactCandidate>& out,
+                                              const std::vector<std::pair<std::size_t, std::size_t>>& edge_ranges,
+                                              const std::vector<std::pair<std::size_t, std::size_t>>& joints,
+                                              const std::vector<FacePlanes>& planes, double tolerance) {
+  // The face-to-face neighbours of every block, in compressed rows.
+  std::vector<std::size_t> start(planes.size() + 1, 0), neighbour(2 * joints.size());
+  for (const auto& [a, b] : joints) ++start[a + 1], ++start[b + 1];
+  for (std::size_t i = 0; i < planes.size(); ++i) start[i + 1] += start[i];
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (const auto& [a, b] : joints) neighbour[fill[a]++] = b, neighbour[fill[b]++] = a;
+  const auto touches = [&](std::size_t i, std::size_t j) {
+    return std::find(neighbour.begin() + static_cast<std::ptrdiff_t>(start[i]), neighbour.begin() + static_cast<std::ptrdiff_t>(start[i + 1]), j) !=
+           neighbour.begin() + static_cast<std::ptrdiff_t>(start[i + 1]);
+  };
+  const auto within = [&](std::size_t block, const Vec3& p, std::size_t f) {
+    return std::abs(planes[block].normal[f].dot(p - planes[block].point[f])) <= tolerance;
+  };
+  const auto on_edge = [&](std::size_t block, const Vec3& p) {
+    int faces = 0;
+    for (std::size_t f = 0; f < planes[block].normal.size() && faces < 2; ++f) faces += within(block, p, f);
+    return faces >= 2;
+  };
+  std::vector<char> drop(out.size(), 0);
+  for (const auto& [first, last] : edge_ranges) {
+    const std::size_t a = out[first].a, b = out[first].b;
+    bool edge_to_edge = true;
+    for (std::size_t i = first; i < last && edge_to_edge; ++i)
+      edge_to_edge = on_edge(a, out[i].position) && on_edge(b, out[i].position);
+    if (!edge_to_edge) continue;
+    for (std::size_t k = start[a]; k < start[a + 1]; ++k) {
+      const std::size_t c = neighbour[k];
+      if (!touches(b, c)) continue;
+      bool on_c = true;
+      for (std::size_t i = first; i < last && on_c; ++i)
+        for (std::size_t f = 0; f < planes[c].normal.size() && on_c; ++f)
+          on_c = planes[c].normal[f].dot(out[i].position - planes[c].point[f]) <= tolerance;
+      if (on_c) {
+        std::fill(drop.begin() + static_cast<std::ptrdiff_t>(first), drop.begin() + static_cast<std::ptrdiff_t>(last), 1);
+        break;
+      }
+    }
+  }
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < out.size(); ++i)
+    if (!drop[i]) out[kept++] = out[i];
+  out.resize(kept);
+}
+
 }  // namespace detail
 
 /// All contact points between the blocks in `bodies`. Pairs of blocks that are both fixed or base are skipped.
@@ -232,6 +286,8 @@ inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, 
   const double cos_max = std::cos(settings.max_normal_angle);
   const bool general = settings.kinds == ContactKinds::general;
   std::vector<ContactCandidate> out;
+  std::vector<std::pair<std::size_t, std::size_t>> joints;       // general: block pairs in face-to-face contact
+  std::vector<std::pair<std::size_t, std::size_t>> edge_ranges;  // general: [first, last) of out, a pair's edge CPs
   if (deepest) *deepest = {{0, 0}, 0.0};
   for (std::size_t u = 0; u < n; ++u) {
     for (std::size_t w = u + 1; w < n && lo[order[w]].x() <= hi[order[u]].x(); ++w) {
@@ -310,6 +366,7 @@ inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, 
 
       const Vec3 na = planes[a].normal[fa], nb = planes[b].normal[fb];
       const Vec3 ca = planes[a].point[fa], cb = planes[b].point[fb];
+      const std::size_t first = out.size();
       for (const auto& [uv, area] : detail::tributary_points(overlap, settings.max_contact_point_area)) {
         const Vec3 p = origin + uv[0] * t1 + uv[1] * t2;
         const double s_a = na.dot(ca - p) / na.dot(n_common);  // p + s n lies on A's face plane
@@ -320,8 +377,15 @@ inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, 
         if (s_b - s_a > settings.tolerance) continue;
         out.push_back({a, b, p + 0.5 * (s_a + s_b) * n_common, n_common, t1, area, s_b - s_a});
       }
+      if (general && out.size() > first) {
+        if (face_to_face)
+          joints.push_back({a, b});
+        else
+          edge_ranges.push_back({first, out.size()});
+      }
     }
   }
+  if (!edge_ranges.empty()) detail::drop_edge_contacts_across_a_block(out, edge_ranges, joints, planes, settings.tolerance);
   return out;
 }
 
