@@ -2,11 +2,18 @@
 """MINPACK's Levenberg-Marquardt (scipy.optimize.least_squares, method='lm', analytic Jacobian) on the problem of
 bench_maxwell_fit: 3 Maxwell branches, zeta* = 4 % over 1-40 Hz, 500 log-spaced points, the same parametrisation
 (cumulative ordering map, centre margin 2) and the same start. Prints the optimum and the time per fit.
-Needs numpy and scipy (Debian: python3-numpy python3-scipy)."""
+Needs numpy and scipy (Debian: python3-numpy python3-scipy; scripts/install-deps.sh --minpack installs them for the
+system Python, which the script uses when the running `python3` lacks them)."""
+import os
+import sys
 import time
 
-import numpy as np
-from scipy.optimize import least_squares
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
+from python_modules import MINPACK, require_modules  # noqa: E402
+
+require_modules(__file__, MINPACK)
+import numpy as np  # noqa: E402
+from scipy.optimize import least_squares  # noqa: E402
 
 ZETA, F_LB, F_UB, N, M, MARGIN = 0.04, 1.0, 40.0, 3, 500, 2.0
 w = 2 * np.pi * np.geomspace(F_LB, F_UB, M)

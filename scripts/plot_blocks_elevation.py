@@ -1,18 +1,22 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Draw the blocks of one or more blockdem block files (.vtu, as `arch --vtk PREFIX` writes PREFIX_blocks.vtu) in
 elevation, seen along y: the faces projected on the x-z plane, the nearest drawn last, fixed blocks grey and free ones
 coloured by their displacement. One panel per file, one above the other (for example the arch as built and after its
 collapse).
 
-    /usr/bin/python3 scripts/plot_blocks_elevation.py before_blocks.vtu after_blocks.vtu --titles "built" "collapsed" \\
+    python3 scripts/plot_blocks_elevation.py before_blocks.vtu after_blocks.vtu --titles "built" "collapsed" \\
         --out arch_collapse.png
 
-Needs numpy and matplotlib (`scripts/install-deps.sh --plots` installs them).
+Needs numpy and matplotlib (`scripts/install-deps.sh --plots` installs them for the system Python, which the script
+uses when the running `python3` lacks them).
 """
 
 import argparse
 
-import matplotlib
+from python_modules import require_modules
+
+require_modules(__file__)  # numpy and matplotlib, or the system Python that has them
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402

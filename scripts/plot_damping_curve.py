@@ -8,15 +8,13 @@ Needs numpy and matplotlib (Debian: python3-numpy python3-matplotlib; scripts/in
 import argparse
 import sys
 from figures import save_figure
+from python_modules import require_modules
 
-try:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import numpy as np
-except ImportError as error:
-    sys.exit(f"plot_damping_curve.py: {error}; install python3-numpy and python3-matplotlib "
-             "(scripts/install-deps.sh --plots)")
+require_modules(__file__)  # numpy and matplotlib, or the system Python that has them
+import matplotlib  # noqa: E402
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np
 
 COLUMNS = ["frequency_hz", "target", "maxwell", "mass_proportional", "rayleigh", "modulus"]
 

@@ -10,15 +10,13 @@ import argparse
 import math
 import sys
 from figures import save_figure
+from python_modules import require_modules
 
-try:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import numpy as np
-except ImportError as error:
-    sys.exit(f"plot_joint_curve.py: {error}; install python3-numpy and python3-matplotlib "
-             "(scripts/install-deps.sh --plots)")
+require_modules(__file__)  # numpy and matplotlib, or the system Python that has them
+import matplotlib  # noqa: E402
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np
 
 COLUMNS = ["step", "opening_m", "slip_m", "normal_stress_pa", "shear_stress_pa", "normal_force_n", "shear_force_n",
            "damage", "dissipated_j_m2", "stored_j_m2"]

@@ -14,15 +14,13 @@ Needs numpy and matplotlib (Debian: python3-numpy python3-matplotlib; scripts/in
 import argparse
 import sys
 from figures import save_figure
+from python_modules import require_modules
 
-try:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import numpy as np
-except ImportError as error:
-    sys.exit(f"plot_record.py: {error}; install python3-numpy and python3-matplotlib "
-             "(scripts/install-deps.sh --plots)")
+require_modules(__file__)  # numpy and matplotlib, or the system Python that has them
+import matplotlib  # noqa: E402
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np
 
 RECORD_COLUMNS = ["time_s", "acceleration_m_s2", "velocity_m_s", "displacement_m", "arias_m_s"]
 SPECTRUM_COLUMNS = ["period_s", "sd_m", "psv_m_s", "psa_m_s2", "psa_g"]

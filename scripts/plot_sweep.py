@@ -23,17 +23,15 @@ import os
 import sys
 import textwrap
 
-try:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    from matplotlib.patches import Rectangle
-    import numpy as np
-except ImportError as error:
-    sys.exit(f"plot_sweep.py: {error}; install python3-numpy and python3-matplotlib "
-             "(scripts/install-deps.sh --plots)")
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # the modules beside this script
+from python_modules import require_modules  # noqa: E402
+require_modules(__file__)  # numpy and matplotlib, or the system Python that has them
+import matplotlib  # noqa: E402
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.patches import Rectangle
+import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))  # figures.py, sweep_summary.py sit next to this script
 from figures import save_figure
 from sweep_summary import (ACC18, NAMES, OC1, SELECTED, SYNTHETIC_TAG, fail, grids, groups_text, is_selected,
                            key_number, list_unfinished, percent, print_all, read_summary, record_text,

@@ -14,15 +14,13 @@ import json
 import os
 import sys
 from figures import save_figure
+from python_modules import require_modules
 
-try:
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    import numpy as np
-except ImportError as error:
-    sys.exit(f"plot_vault.py: {error}; install python3-numpy and python3-matplotlib "
-             "(scripts/install-deps.sh --plots)")
+require_modules(__file__)  # numpy and matplotlib, or the system Python that has them
+import matplotlib  # noqa: E402
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np
 
 COLOURS = {"none": "tab:green", "mass": "tab:blue", "maxwell": "tab:red", "stiffness": "tab:purple", "rayleigh": "tab:orange"}
 NAMES = {"none": "noDamp", "mass": "MassProp", "maxwell": "Maxwell", "stiffness": "StiffProp", "rayleigh": "Rayleigh"}

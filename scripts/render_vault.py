@@ -1,16 +1,20 @@
-#!/usr/bin/python3
+#!/usr/bin/env python3
 """Render the blocks of a blockdem .vtu file (as `cross_vault --geometry-only --vtk FILE` writes it: ASCII
 polygons with a per-cell `component` field) to a PNG, coloured by component: the whole specimen in 3D, and the plan
 of the vault and its infill seen from above (the brick courses, their staggered head joints and the groins).
 
-    /usr/bin/python3 scripts/render_vault.py vault.vtu docs/cross_vault.png
+    python3 scripts/render_vault.py vault.vtu docs/cross_vault.png
 
-Needs numpy and matplotlib (the system python3 has them; `scripts/install-deps.sh --plots` installs them).
+Needs numpy and matplotlib (`scripts/install-deps.sh --plots` installs them for the system Python, which the script
+uses when the running `python3` lacks them).
 """
 
 import argparse
 
-import matplotlib
+from python_modules import require_modules
+
+require_modules(__file__)  # numpy and matplotlib, or the system Python that has them
+import matplotlib  # noqa: E402
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
