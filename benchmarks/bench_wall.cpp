@@ -27,7 +27,7 @@ void step(benchmark::State& state) {
   Simulation<Damping, Law> sim(*model, make_damping<Damping>(), [](int, int) { return parameters<Law>(); });
   for (int i = 0; i < 20; ++i) sim.step();  // warm up, let it settle a little
   for (auto _ : state) sim.step();
-  // Rates per item, inverted: seconds per CP-step; the table in README.md lists them in ns.
+  // Rates per item, inverted: seconds per CP-step; the table in docs/performance.md lists them in ns.
   state.counters["cp_step_ns"] = benchmark::Counter(static_cast<double>(state.iterations()) * static_cast<double>(sim.contact_points()) * 1e-9,
                                                    benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   state.counters["block_step_ns"] = benchmark::Counter(static_cast<double>(state.iterations()) * static_cast<double>(model->bodies.size()) * 1e-9,

@@ -59,8 +59,8 @@ Damping make_damping() {
   else static_assert(unlisted<Damping>, "a new policy: give the wall its coefficients here");
 }
 
-/// Whether bench_wall has a row for the law and policy (README.md's table): the policies of a dynamic run (not
-/// Local, which settles a model; not StiffnessProportional, Rayleigh without its mass part), ElastoSoftening
+/// Whether bench_wall has a row for the law and policy (docs/performance.md's table): the policies of a dynamic run
+/// (not Local, which settles a model; not StiffnessProportional, Rayleigh without its mass part), ElastoSoftening
 /// without Rayleigh.
 template <class Law, class Damping>
 constexpr bool in_wall_table() {

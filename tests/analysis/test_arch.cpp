@@ -51,7 +51,7 @@ TEST_CASE("two-column records: malformed lines are reported with file and line")
 
 TEST_CASE("arch: beyond its collapse multiplier the 40-voussoir arch collapses completely, onto the floor, and comes "
           "to rest there with no voussoir inside another (general contacts)") {
-  // lambda = 0.3, twice the collapse multiplier of t/R = 0.15 (0.143, README); joints of 1e8 Pa/m (the collapse does not
+  // lambda = 0.3, twice the collapse multiplier of t/R = 0.15 (0.143, docs/arch.md); joints of 1e8 Pa/m (the collapse does not
   // depend on them, the timestep does: 32 600 steps). Measured: at rest, 19 of 40 voussoirs on the floor (the others
   // on them), deepest overlap of two blocks 1.9 mm, 1.3 % of the ring's thickness: the soft joints' overlap in the
   // impacts (a block passing through another would overlap it by its size, 8 to 15 cm).

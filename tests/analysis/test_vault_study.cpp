@@ -276,7 +276,7 @@ TEST_CASE("vault study: with general contacts the vault runs the paper's levels 
   // face-to-face plane is the common plane; at the crown line, where eight blocks meet, the block between them
   // meets both face to face. The issue asked for OC1 within 1 %; measured on 2 s of the strong part, 25, 50 and 75 %
   // in turn: -0.01, -0.19 and -0.11 % (+1.3, -7.6 and -2.3 % when those lines had edge CPs; the paper's vault: -0.1,
-  // -0.1 and +0.4 %, README). Checked here: within 1 %, and more contact points.
+  // -0.1 and +0.4 %, docs/vault-study.md). Checked here: within 1 %, and more contact points.
   const OneThread one_thread;
   std::vector<double> peaks[2];
   std::size_t points[2] = {0, 0};

@@ -84,7 +84,7 @@ struct VaultStudyOptions {
   // enough for the small rotations of the paper's levels) or general (vertex, edge and face: blocks may turn as far
   // as a collapse takes them). General contacts also find the places where blocks of the vault as built touch along
   // an edge only (faceted groins and infill: 14,740 contact points instead of 14,290), which stiffen it: OC1's peaks
-  // differ by 2-5 % (README, `cross_vault run`). Past the paper's levels a run goes on to the collapse (below).
+  // differ by 2-5 % (docs/vault-study.md). Past the paper's levels a run goes on to the collapse (below).
   model::ContactKinds contacts = model::ContactKinds::faces;
 
   // Settling under gravity (static, local damping, static mass scaling).
