@@ -189,8 +189,9 @@ struct CompareCommand {
         const double e = analysis::mean_rmsd_error_percent(comparisons, suffix);  // eq. 27-28 over OC1, OC2, OC4
         if (json) out.add(std::string("mean_rmsd_error_percent") + suffix, e);
         else fmt::print("eq. 27-28 over OC1, OC2, OC4 ({}): {:.2f} %\n", suffix + 1, e);
-      } catch (const InvalidArgument&) {
-        // a direction the measurement does not have
+      } catch (const InvalidArgument& e) {  // a direction or a camera the measurement does not have: say which
+        if (json) out.add(std::string("mean_rmsd_error_percent") + suffix + "_not_computed", std::string(e.what()));
+        else fmt::print("eq. 27-28 over OC1, OC2, OC4 ({}): not computed: {}\n", suffix + 1, e.what());
       }
     }
     if (json) fmt::print("{}\n", out.str());

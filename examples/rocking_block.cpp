@@ -3,7 +3,8 @@
 //
 //   rocking_block --width 0.2 --height 1 [--depth 0.5] (--constant-acceleration A | --history FILE [--in-g])
 //   (a constant acceleration is ramped in over 0.2 s)
-//                 [--duration 2] [--friction-angle 45] [--contact-damping 0] [--out rotation.csv] [--json]
+//                 [--duration 2] [--friction-angle 45] [--contact-damping 0] [--timestep-factor 1] [--out rotation.csv]
+//                 [--json]
 //                 [--deformable [--max-edge 0.25] [--young 10e9] [--poisson 0.2]] [--target-dt DT]
 //
 // The block keeps its contact with the base however far it rocks (general contacts: edge and vertex as well as face):
@@ -44,6 +45,9 @@ int main(int argc, char** argv) {
   app.add_option("--friction-angle", o.friction_angle_deg, "degrees, (0, 89]")->capture_default_str();
   app.add_option("--normal-stiffness", o.normal_stiffness, "joint normal (and shear) stiffness, Pa/m")->capture_default_str();
   app.add_option("--duration", o.duration, "simulated time, s")->capture_default_str();
+  app.add_option("--timestep-factor", o.timestep_factor,
+                 "fraction of the default timestep, (0, 1]: 0.03 resolves the impacts (docs/rocking_block.md)")
+      ->capture_default_str();
   app.add_option("--contact-damping", o.contact_damping_ratio,
                  "dashpots in the joint's springs, fraction of critical for the block bouncing on its base, [0, 10]")
       ->capture_default_str();

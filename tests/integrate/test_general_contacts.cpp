@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <utility>
 #include <set>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "blockdem/geometry/queries.hpp"
 #include "blockdem/integrate/simulation.hpp"
 #include "blockdem/model/contact_detection.hpp"
+#include "rocking_reference.hpp"
 
 using namespace blockdem;
 
@@ -280,8 +282,11 @@ TEST_CASE("general contacts: the Wyllie and Mah block on a 40 degree slope stand
 TEST_CASE("general contacts: a stocky block (b/h = 1) rocked to 30 degrees keeps its contact and its impact follows "
           "Housner's restitution 1 - 1.5 sin^2(alpha) = 0.25") {
   // Housner's impact is inelastic, about the new edge, without sliding: a friction angle of 80 degrees, and dashpots
-  // in the joint's springs (4 x critical of the block bouncing on its base). Measured: 29.4 deg, 0.2533 (1.3 % above
-  // 0.25); 0.283 with dashpots at 2 x critical, 0.331 without (the block bounces on its edge).
+  // in the joint's springs. Their ratio, 4 x critical of the block bouncing on its base, is CALIBRATED to Housner's
+  // value at the default timestep: the match tests that the impact is resolved about the new edge, not the damping.
+  // Measured: 29.4 deg, 0.2533 (1.3 % above 0.25); 0.283 with dashpots at 2 x critical. At 0.03 of the default
+  // timestep the same dashpots give 0.243 and 0.253: part of the default's figure is the timestep's error (the tests
+  // below). The undamped springs are checked against an independent model below.
   analysis::RockingOptions o;
   o.width = 1;
   o.depth = 0.5;
@@ -300,6 +305,62 @@ TEST_CASE("general contacts: a stocky block (b/h = 1) rocked to 30 degrees keeps
   REQUIRE(!r.restitution.empty());
   CHECK(r.housner_restitution == test::approx(0.25));
   CHECK(r.restitution.front() == test::approx(r.housner_restitution).epsilon(0.1));
+}
+
+namespace {
+
+/// The stocky block of the Housner test above, undamped, at `factor` of the default timestep, and the independent
+/// reference of the same block (tests/integrate/rocking_reference.hpp: two corner springs with Coulomb friction,
+/// Boost.Odeint's Runge-Kutta at 1e-6 s, none of the DEM's detection, joint law or central differences).
+std::pair<analysis::RockingResult, test::RockingReference::Result> stocky_block_and_reference(double factor) {
+  analysis::RockingOptions o;
+  o.width = 1;
+  o.depth = 0.5;
+  o.height = 1;
+  o.friction_angle_deg = 80;
+  o.duration = 2.0;
+  o.timestep_factor = factor;
+  motion::Record pulse;  // the half-sine of the Housner test
+  pulse.dt = 1e-3;
+  test::RockingReference ref;
+  for (int i = 0; i <= 300; ++i) {
+    pulse.acceleration.push_back(2.35 * 9.81 * std::sin(pi * i / 300.0));
+    ref.base_acceleration.push_back(pulse.acceleration.back());
+  }
+  o.base_acceleration = pulse;
+  auto dem = analysis::analyse_rocking(o);
+  auto exact = ref.run();
+  MESSAGE("timestep " << dem.timestep << " s: largest rotation DEM " << dem.max_rotation << " rad, reference "
+          << exact.max_rotation << " rad; first restitution DEM " << (dem.restitution.empty() ? -1.0 : dem.restitution.front())
+          << ", reference " << (exact.restitution.empty() ? -1.0 : exact.restitution.front()));
+  return {dem, exact};
+}
+
+}  // namespace
+
+TEST_CASE("general contacts: at a timestep that resolves the impact, the stocky block's undamped rocking and landing "
+          "match an independent ODE of the same block on its springs") {
+  // Measured at 0.03 of the default timestep (2.6e-5 s): largest rotation 0.518434 against 0.518606 rad, restitution
+  // 0.1843 against 0.1826 (the reference converged to 4 digits between 4e-6 and 1e-6 s; the DEM between 0.1 and 0.01
+  // of its default: 0.1846, 0.1843, 0.1842). The DEM's four contact points are the reference's two edges.
+  const auto [dem, exact] = stocky_block_and_reference(0.03);
+  REQUIRE(!exact.restitution.empty());
+  REQUIRE(!dem.restitution.empty());
+  CHECK(dem.max_rotation == doctest::Approx(exact.max_rotation).epsilon(1e-3));
+  CHECK(dem.restitution.front() == doctest::Approx(exact.restitution.front()).epsilon(0.02));
+}
+
+TEST_CASE("general contacts: at the default timestep the stocky block's undamped landing gives back what the ODE "
+          "does (KNOWN TO FAIL: issue 42)" * doctest::should_fail()) {
+  // At the default timestep (8.6e-4 s, 0.8 of the bound) the landing edge's springs are resolved by about two steps
+  // and give back more energy than they took: restitution 0.331 against the reference's 0.183 (0.2085 at half the
+  // timestep, 0.188 at a quarter). The rocking before it is right (0.518505 against 0.518606 rad). When impacts stop
+  // making energy this test passes, and doctest reports that as a failure: then drop should_fail.
+  const auto [dem, exact] = stocky_block_and_reference(1.0);
+  REQUIRE(!exact.restitution.empty());
+  REQUIRE(!dem.restitution.empty());
+  CHECK(dem.max_rotation == doctest::Approx(exact.max_rotation).epsilon(1e-3));
+  CHECK(dem.restitution.front() == doctest::Approx(exact.restitution.front()).epsilon(0.05));
 }
 
 TEST_CASE("general contacts: a block turned past 20 degrees on its edge keeps its edge's contact points and their "

@@ -285,8 +285,10 @@ inline EarlierCase read_case_file(const std::string& dir, const SweepCase& c) {
     e.row.json = at == std::string::npos ? std::string("{}") : s.substr(at + 7, s.rfind('}') - at - 7);
     while (!e.row.json.empty() && (e.row.json.back() == '\n' || e.row.json.back() == ' ')) e.row.json.pop_back();
     e.present = e.status != CaseStatus::pending && !e.row.csv.empty();
-  } catch (const std::exception&) {
+  } catch (const InputError&) {
     e.present = false;  // a damaged record: the case runs again
+  } catch (const InvalidArgument&) {
+    e.present = false;
   }
   return e;
 }
@@ -344,13 +346,22 @@ inline CaseRow run_sweep_case(const SweepCase& c, const SweepRunOptions& run, co
       compared = compare_tables(simulated, read_csv_table(run.measured));
       try {
         eps_uy = mean_rmsd_error_percent(compared, "_uy");
-      } catch (const InvalidArgument&) {
-        // the measurement lacks a camera of eq. 27
+      } catch (const InvalidArgument& e) {  // the measurement lacks a camera of eq. 27: the row says so
+        row.message += std::string(row.message.empty() ? "" : "; ") + "eps_rmsd_uy not computed: " + e.what();
       }
     }
-  } catch (const std::exception& e) {
+  } catch (const InvalidArgument& e) {  // the case's input: an option, a record, a target the record cannot reach
     row.status = CaseStatus::failed;
     row.message = e.what();
+  } catch (const InputError& e) {
+    row.status = CaseStatus::failed;
+    row.message = e.what();
+  } catch (const RunawayError& e) {
+    row.status = CaseStatus::failed;
+    row.message = e.what();
+  } catch (const std::exception& e) {  // anything else is blockdem's fault, not the case's: said so, and the sweep goes on
+    row.status = CaseStatus::failed;
+    row.message = std::string("internal error (a fault of blockdem, not of this case's input; please report it): ") + e.what();
   }
   row.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
   if (ran) row.wall_seconds = result.wall_seconds;
