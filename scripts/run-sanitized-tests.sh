@@ -12,7 +12,8 @@
 # deformable runs (program.arch.deformable, program.rocking_block.deformable). And the vault under general contacts
 # against face-to-face ones (six runs of the coarse vault) and its collapse past the paper's levels (27 s in Release:
 # thousands of re-detections as the webs fall); the general detection runs sanitized in the tests of
-# general contacts and the arch's collapse, the vault study in the other vault tests.
+# general contacts and the arch's collapse, the collapse path in the short collapse at 500 % (a thousand
+# re-detections), the vault study in the other vault tests.
 # The plotting scripts' tests (plot.*) run in the Release stage only: they test Python, not the instrumented code.
 set -euo pipefail
 cd "$(dirname "$0")/.."
