@@ -60,8 +60,7 @@ blockdem_plot_test(blocks_elevation SCRIPT ${scripts}/plot_blocks_elevation.py
   PRODUCE_1 $<TARGET_FILE:arch> --lambda 0 --vtk built
   PRODUCE_2 $<TARGET_FILE:arch> --lambda 0.4 --vtk collapsed
   ARGS built_blocks.vtu collapsed_blocks.vtu --titles built collapsed --out arch.png PNGS ${plots}/blocks_elevation/arch.png)
-# The vault study's figures from the short run of program.cross_vault.run.
-set_tests_properties(program.cross_vault.run PROPERTIES FIXTURES_SETUP vault_run)
+# The vault study's figures from the short run of program.cross_vault.run (the fixture vault_run).
 set(vault_run "${CMAKE_CURRENT_BINARY_DIR}/vault_run")
 blockdem_plot_test(vault SCRIPT ${scripts}/plot_vault.py NEEDS vault_run ARGS ${vault_run} --out ${plots}/vault
   PNGS ${plots}/vault/displacement_oc1.png ${plots}/vault/displacement_oc2_oc4.png
