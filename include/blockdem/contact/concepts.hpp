@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <type_traits>
 
+#include "blockdem/contact/closure_impulse.hpp"
 #include "blockdem/core/types.hpp"
 
 namespace blockdem::contact {
@@ -59,10 +60,13 @@ struct ShearTurn {
 
 /// A joint law: `Parameters` (validated on construction: throws InvalidArgument naming the field and range),
 /// `History` (per contact point; `gap` in m, positive open), and static functions
-/// - `update(params, history, du_normal, du_shear) -> Response`: du_normal is the increment of the gap (m),
-///   du_shear the increment of B's displacement relative to A along t1, t2 (m); updates the history. Its
+/// - `update(params, history, du_normal, du_shear, step = {}) -> Response`: du_normal is the increment of the gap
+///   (m), du_shear the increment of B's displacement relative to A along t1, t2 (m); updates the history. Its
 ///   `damping_active` is damping_active(params, history) after the step: the contact pass reads it there, where the
-///   step has the flags and the gap in registers, instead of loading them back from the history per CP;
+///   step has the flags and the gap in registers, instead of loading them back from the history per CP. A law whose
+///   normal spring has a kink (a joint that opens) corrects the sample where the kink was crossed with the closure
+///   impulse of `step` (contact/closure_impulse.hpp) and books its work in `dissipated`; `traction()` includes that
+///   one-sample correction (what update returned), `stored_energy()` is the spring's;
 /// - `normal_stiffness(params)`, `shear_stiffness(params)`: the elastic stiffnesses, Pa/m, for the timestep;
 /// - `damping_active(params, history)`: false once the joint has failed or while it is open, so that a dashpot
 ///   never acts across an open joint (the damping policy releases its stresses);
@@ -86,7 +90,8 @@ struct ShearTurn {
 /// Every function is static and noexcept (update runs in the hot loop, the others in redetection and output).
 template <class L>
 concept ContactLaw = requires(const typename L::Parameters& p, typename L::History& h, const typename L::History& held,
-                              double du, Shear ds, const ShearTurn& turn) {
+                              double du, Shear ds, const ShearTurn& turn, const Step& step) {
+  { L::update(p, h, du, ds, step) } noexcept -> std::same_as<Response>;
   { L::update(p, h, du, ds) } noexcept -> std::same_as<Response>;
   { L::normal_stiffness(p) } noexcept -> std::convertible_to<double>;
   { L::shear_stiffness(p) } noexcept -> std::convertible_to<double>;

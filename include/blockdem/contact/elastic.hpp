@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "blockdem/contact/closure_impulse.hpp"
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/core/error.hpp"
 
@@ -26,7 +27,8 @@ struct Elastic {
     Shear shear{0, 0};      // Pa
   };
 
-  static constexpr Response update(const Parameters& p, History& h, double du_normal, Shear du_shear) noexcept {
+  /// No kink (the spring is linear through tension), so no closure correction: the step is ignored.
+  static constexpr Response update(const Parameters& p, History& h, double du_normal, Shear du_shear, const Step& = {}) noexcept {
     // The new values from locals, not read back from the history: read back, GCC loaded the two shear stresses as
     // one 16-byte word right after storing them apart (a failed store forward per CP-step).
     const double gap = h.gap + du_normal;

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 
+#include "blockdem/contact/closure_impulse.hpp"
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/core/error.hpp"
 
@@ -55,10 +56,12 @@ struct MohrCoulomb {
     double normal = 0;     // Pa, compression positive
     std::uint8_t failed = 0;    // the bond broke: residual strengths from now on
     std::uint8_t slipping = 0;  // at the Coulomb limit in the last step
+    ClosureImpulse impulse;     // the correction of the last sample, if its normal spring closed or opened
   };
 
-  static Response update(const Parameters& p, History& h, double du_normal, Shear du_shear) noexcept {
+  static Response update(const Parameters& p, History& h, double du_normal, Shear du_shear, const Step& step = {}) noexcept {
     const double normal_before = h.normal;
+    const double gap_before = h.gap;
     h.gap += du_normal;
     const bool failed_before = h.failed != 0;
     bool failed = failed_before;
@@ -74,9 +77,18 @@ struct MohrCoulomb {
     // last step while the joint carried more tension than the residual strength): the energy the normal spring loses
     // at its present gap (normal_energy), released by no force. Once per failure, never negative.
     double dissipated = 0.0;
-    if (failed && (!failed_before || normal_before < -p.residual_tensile_strength))
+    double kink_crossing = 0.0;  // J/m^2, the trapezoid error of a step across the kink
+    if (failed && (!failed_before || normal_before < -p.residual_tensile_strength)) [[unlikely]] {
       dissipated = normal_energy(p, elastic > -p.tensile_strength ? elastic : -p.tensile_strength, h.gap) -
-                   normal_energy(p, sigma, h.gap);
+                    normal_energy(p, sigma, h.gap);
+    } else if ((gap_before * p.normal_stiffness > tension) != (h.gap * p.normal_stiffness > tension)) [[unlikely]] {
+      // The normal spring crossed its kink at the cut-off (gap T / k_n; 0 without tension): closed or opened
+      // between the samples (contact/closure_impulse.hpp).
+      const double kink = tension / p.normal_stiffness;
+      const double y0 = gap_before - kink, y1 = h.gap - kink;
+      kink_crossing = kink_error(y0, y1, y0 > 0.0 ? 0.0 : p.normal_stiffness, y1 > 0.0 ? 0.0 : p.normal_stiffness);
+    }
+    const double correction = h.impulse.step(kink_crossing, du_normal, sigma, p.normal_stiffness, step, dissipated);
     Shear tau{h.shear[0] - p.shear_stiffness * du_shear[0], h.shear[1] - p.shear_stiffness * du_shear[1]};
     // Comparisons, not std::fmax: GCC calls libm for fmax (its NaN rules), one call per CP-step in the hot loop.
     const double compression = sigma > 0.0 ? sigma : 0.0;
@@ -102,7 +114,9 @@ struct MohrCoulomb {
     // a lone byte store just before would stall (store forwarding).
     h.failed = failed ? (h.failed == contact::never_bonded ? contact::never_bonded : 1) : 0;
     h.slipping = slipping ? 1 : 0;
-    return {sigma, tau, dissipated, !failed && !slipping && (h.gap <= 0 || p.tensile_strength > 0)};  // damping_active
+    // damping_active as the last field; the normal stress with the closure correction of this sample (h.normal, the
+    // spring's, without it).
+    return {sigma + correction, tau, dissipated, !failed && !slipping && (h.gap <= 0 || p.tensile_strength > 0)};
   }
   static constexpr double normal_stiffness(const Parameters& p) noexcept { return p.normal_stiffness; }
   static constexpr double shear_stiffness(const Parameters& p) noexcept { return p.shear_stiffness; }
@@ -119,18 +133,25 @@ struct MohrCoulomb {
   static constexpr double normal_energy(const Parameters& p, double sigma, double gap) noexcept {
     return -sigma * gap - 0.5 * sigma * sigma / p.normal_stiffness;
   }
-  static constexpr Traction traction(const Parameters&, const History& h) noexcept {
-    return {h.normal, h.shear[0], h.shear[1]};
+  /// What the last update returned: the spring's stresses and this sample's closure correction.
+  static Traction traction(const Parameters&, const History& h) noexcept {
+    return {h.normal + h.impulse.stress(), h.shear[0], h.shear[1]};
   }
 
   // Traits (ContactLaw). Damage is all or nothing: 1 once the bond broke (or never was, contact::never_bonded).
   static void turn_shear(History& h, const ShearTurn& turn) noexcept { turn.apply(h.shear[0], h.shear[1]); }
   static constexpr double damage(const History& h) noexcept { return h.failed ? 1.0 : 0.0; }
   static constexpr void start_unbonded(History& h) noexcept { h.failed = contact::never_bonded; }
+  /// A contact point found in overlap where the pair had no contact: its spring's energy is owed to the closure
+  /// impulse (contact/closure_impulse.hpp), after start_unbonded.
+  static void owe_stored_energy(const Parameters& p, History& h) noexcept {
+    if (h.gap < 0) h.impulse.owe(0.5 * p.normal_stiffness * h.gap * h.gap);
+  }
   static constexpr bool never_bonded(const History& h) noexcept { return h.failed == contact::never_bonded; }
   static constexpr bool dissipates = true;  // slip
 };
 
 static_assert(ContactLaw<MohrCoulomb>);
+static_assert(sizeof(MohrCoulomb::History) == 40);  // the closure impulse in what was padding
 
 }  // namespace blockdem::contact

@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "blockdem/contact/closure_impulse.hpp"
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/units.hpp"
@@ -253,7 +254,7 @@ struct ElastoSoftening {
     }
   };
 
-  /// Per contact point: 64 bytes, doubles and flags only.
+  /// Per contact point: 64 bytes, doubles, flags and the closure correction (in what was padding).
   struct History {
     double gap = 0;                  // m, positive open
     Shear shear{0, 0};               // Pa
@@ -263,43 +264,60 @@ struct ElastoSoftening {
     double max_closure = 0;          // m, largest closure reached beyond f_c / 3 (0 until then)
     std::uint8_t failed = 0;         // d >= failure_damage: residual strengths
     std::uint8_t inelastic = 0;      // the last step cracked, crushed or slipped
+    ClosureImpulse impulse;          // the correction of the last sample, if the gap changed sign in its step
   };
 
   /// The step: inline while it stays elastic (the common case, a few comparisons); the cracking, crushing and
   /// slipping paths out of line (`update_inelastic`), so that the fused contact loop keeps the law inline.
-  [[gnu::always_inline]] static Response update(const Parameters& p, History& h, double du_normal, Shear du_shear) noexcept {
+  [[gnu::always_inline]] static Response update(const Parameters& p, History& h, double du_normal, Shear du_shear,
+                                                const Step& step = {}) noexcept {
     const double gap = h.gap + du_normal;
     const double intact = 1.0 - h.damage;
     const double kn = p.normal_stiffness;
     double sigma;  // compression positive
     if (gap > 0) {
       sigma = -kn * h.tension_secant * gap;
-      if (-sigma > p.residual_tensile_strength + p.tensile_drop * intact) return update_inelastic(p, h, du_normal, du_shear);
+      if (-sigma > p.residual_tensile_strength + p.tensile_drop * intact) return update_inelastic(p, h, du_normal, du_shear, step);
     } else {
-      if (-gap > std::max(h.max_closure, p.elastic_limit_closure)) return update_inelastic(p, h, du_normal, du_shear);
+      if (-gap > std::max(h.max_closure, p.elastic_limit_closure)) return update_inelastic(p, h, du_normal, du_shear, step);
       sigma = -kn * h.compression_secant * gap;
     }
     const double limit2 = shear_limit_squared(p, sigma, intact, cap_strength(p, h));
     const Shear tau{h.shear[0] - p.shear_stiffness * du_shear[0], h.shear[1] - p.shear_stiffness * du_shear[1]};
     const double old2 = h.shear[0] * h.shear[0] + h.shear[1] * h.shear[1];
     if (old2 > limit2 * (1.0 + 1e-12) || tau[0] * tau[0] + tau[1] * tau[1] > limit2)
-      return update_inelastic(p, h, du_normal, du_shear);
+      return update_inelastic(p, h, du_normal, du_shear, step);
+    double dissipated = 0.0;
+    double kink_crossing = 0.0;
+    if ((h.gap > 0) != (gap > 0)) [[unlikely]] {
+      // The gap changed sign: the normal spring crossed its kink between the secants (contact/closure_impulse.hpp).
+      const double k0 = kn * (h.gap > 0 ? h.tension_secant : h.compression_secant);
+      const double k1 = kn * (gap > 0 ? h.tension_secant : h.compression_secant);
+      kink_crossing = kink_error(h.gap, gap, k0, k1);
+    }
+    const double correction = h.impulse.step(kink_crossing, du_normal, sigma, kn, step, dissipated);
     h.gap = gap;
     h.shear = tau;
     h.inelastic = 0;
-    // damping_active with inelastic = 0 and the new gap.
-    return {sigma, tau, 0.0, h.damage == 0 || (h.damage < p.damping_damage_limit && h.failed == 0 && !(gap > 0))};
+    // damping_active with inelastic = 0 and the new gap; the normal stress with the closure correction of this
+    // sample (normal_stress(), the spring's, without it).
+    return {sigma + correction, tau, dissipated,
+            h.damage == 0 || (h.damage < p.damping_damage_limit && h.failed == 0 && !(gap > 0))};
   }
 
   /// The whole step, any regime (the elastic one included).
-  [[gnu::noinline]] static Response update_inelastic(const Parameters& p, History& h, double du_normal, Shear du_shear) noexcept {
+  [[gnu::noinline]] static Response update_inelastic(const Parameters& p, History& h, double du_normal, Shear du_shear,
+                                                     const Step& step = {}) noexcept {
+    const double kn = p.normal_stiffness;
+    const double gap_before = h.gap;
+    const double sigma_before = normal_stress(p, h);
+    const double normal_energy_before = normal_energy(p, h);
+    double dissipated = 0.0;
     const double gap = h.gap + du_normal;
     h.gap = gap;
     const double intact0 = 1.0 - h.damage;  // 1 - d
     double intact = intact0;
-    double dissipated = 0.0;
     bool inelastic = false;
-    const double kn = p.normal_stiffness;
 
     // Normal part, at fixed shear displacement. The side the gap left is unloaded along its secant (no dissipation),
     // so only the side it ends on can leave the elastic range.
@@ -324,6 +342,12 @@ struct ElastoSoftening {
       }
     }
     const double intact_after_normal = intact;
+    // The gap changed sign (contact/closure_impulse.hpp): the normal part's trapezoid error over the step, what its
+    // work, its stored energy and what it booked leave unaccounted (the kink between the secants, and any softening
+    // or crushing on the way).
+    const double kink_crossing = (gap_before > 0) != (gap > 0)
+        ? 0.5 * (sigma_before + sigma) * du_normal + normal_energy(p, h) - normal_energy_before + dissipated : 0.0;
+    const double correction = h.impulse.step(kink_crossing, du_normal, sigma, kn, step, dissipated);
 
     // Shear part, at fixed gap: the limit with the damage so far, the elastic predictor with k_s, the return.
     const double ks = p.shear_stiffness;
@@ -368,7 +392,7 @@ struct ElastoSoftening {
     if (intact < intact0) h.damage = std::max(h.damage, std::min(1.0, 1.0 - intact));
     if (h.failed != contact::never_bonded) h.failed = h.damage >= failure_damage;
     h.inelastic = inelastic;
-    return {sigma, tau, dissipated, damping_active(p, h)};
+    return {sigma + correction, tau, dissipated, damping_active(p, h)};
   }
 
   static constexpr double normal_stiffness(const Parameters& p) noexcept { return p.normal_stiffness; }
@@ -386,9 +410,12 @@ struct ElastoSoftening {
 
   /// Recoverable elastic energy per area, with the current secant stiffness on the side the gap is on.
   static constexpr double stored_energy(const Parameters& p, const History& h) noexcept {
+    return normal_energy(p, h) + 0.5 * (h.shear[0] * h.shear[0] + h.shear[1] * h.shear[1]) / p.shear_stiffness;
+  }
+  /// The normal spring's part of stored_energy (J/m^2).
+  static constexpr double normal_energy(const Parameters& p, const History& h) noexcept {
     const double secant = h.gap > 0 ? h.tension_secant : h.compression_secant;
-    return 0.5 * p.normal_stiffness * secant * h.gap * h.gap +
-           0.5 * (h.shear[0] * h.shear[0] + h.shear[1] * h.shear[1]) / p.shear_stiffness;
+    return 0.5 * p.normal_stiffness * secant * h.gap * h.gap;
   }
 
   // Traits (ContactLaw). A never-bonded point starts fully damaged: residual strengths, no tension.
@@ -399,6 +426,11 @@ struct ElastoSoftening {
     h.damage = 1.0;
   }
   static constexpr bool never_bonded(const History& h) noexcept { return h.failed == contact::never_bonded; }
+  /// A contact point found in overlap where the pair had no contact: its spring's energy is owed to the closure
+  /// impulse (contact/closure_impulse.hpp), after start_unbonded.
+  static void owe_stored_energy(const Parameters& p, History& h) noexcept {
+    if (h.gap < 0) h.impulse.owe(normal_energy(p, h));
+  }
   static constexpr bool dissipates = true;  // cracking, crushing, slip
 
   // ---- the current state, for output and tests ----
@@ -409,8 +441,8 @@ struct ElastoSoftening {
   }
   /// The secants are kept so that this is the normal stress the step returned (to rounding: after softening or
   /// crushing, secant = stress / (k_n gap)).
-  static constexpr Traction traction(const Parameters& p, const History& h) noexcept {
-    return {normal_stress(p, h), h.shear[0], h.shear[1]};
+  static Traction traction(const Parameters& p, const History& h) noexcept {
+    return {normal_stress(p, h) + h.impulse.stress(), h.shear[0], h.shear[1]};  // with this sample's closure correction
   }
   /// f_t(d), Pa.
   static constexpr double tensile_strength(const Parameters& p, const History& h) noexcept {

@@ -26,9 +26,11 @@ namespace blockdem {
 /// The fused contact loop of one law. Per contact: the frame and the relative motion of the two blocks, reduced
 /// to the displacement increment at the origin and the relative rotation; per CP: the increment by four
 /// multiply-adds -> law -> damping -> traction, summed into the contact's force and moments. AdvanceFields:
-/// whether time passes for the Maxwell fields (contact_pass; no use without fields).
+/// whether time passes for the Maxwell fields (contact_pass; no use without fields). inverse_omega_squared: 1 /
+/// omega^2 (s^2) of the bound the timestep was set from, for the laws' closure impulse (contact/closure_impulse.hpp).
 template <bool AdvanceFields, class Damping, class G>
-void contact_pass_of(G& g, const model::RigidBodies& b, const Damping& damping, double increment_dt) {
+void contact_pass_of(G& g, const model::RigidBodies& b, const Damping& damping, double increment_dt,
+                     double inverse_omega_squared) {
   using L = typename G::LawType;
   // Raw pointers in locals: the compiler keeps the array addresses in registers instead of reloading them from the
   // vectors after every store. (GCC honours restrict only on parameters: the CP loop below gets its arrays as the
@@ -58,6 +60,7 @@ void contact_pass_of(G& g, const model::RigidBodies& b, const Damping& damping, 
   std::uint8_t* __restrict const field_form = g.field_form.data();
   const auto count = static_cast<std::ptrdiff_t>(g.contacts());
   const double h = 0.5 * increment_dt;
+  const contact::Step step{increment_dt, inverse_omega_squared};
   // Whether the CP loop evaluates viscous stresses per CP (not for None, MassProportional, Local, nor for a
   // contact field, which acts on the contact's resultant).
   constexpr bool cp_viscous = !G::has_field && damping::PerSpringDamping<Damping>;
@@ -173,7 +176,7 @@ void contact_pass_of(G& g, const model::RigidBodies& b, const Damping& damping, 
           const double x1 = point_1[k], x2 = point_2[k];
           const double du_n = du0_n + x2 * w_1 - x1 * w_2;
           const contact::Shear du_s{du0_1 - x2 * w_n, du0_2 + x1 * w_n};
-          const contact::Response r = L::update(p, point_history[k], du_n, du_s);
+          const contact::Response r = L::update(p, point_history[k], du_n, du_s, step);
           const bool active = r.damping_active;  // L::damping_active(p, point_history[k]), from the step's registers
           const double area = point_area[k];
           double dissipated = 0.0;
@@ -255,14 +258,14 @@ void contact_pass_of(G& g, const model::RigidBodies& b, const Damping& damping, 
 /// for steps in which time passes and for those in which none does (increment_dt 0: the forces of the present
 /// state only), so that the loop has no branch on it per contact.
 template <class Damping, class G>
-void contact_pass(G& g, const model::RigidBodies& b, const Damping& damping, double increment_dt) {
+void contact_pass(G& g, const model::RigidBodies& b, const Damping& damping, double increment_dt, double inverse_omega_squared) {
   if constexpr (G::has_field) {
     if (increment_dt > 0.0)
-      contact_pass_of<true>(g, b, damping, increment_dt);
+      contact_pass_of<true>(g, b, damping, increment_dt, inverse_omega_squared);
     else
-      contact_pass_of<false>(g, b, damping, increment_dt);
+      contact_pass_of<false>(g, b, damping, increment_dt, inverse_omega_squared);
   } else {
-    contact_pass_of<true>(g, b, damping, increment_dt);
+    contact_pass_of<true>(g, b, damping, increment_dt, inverse_omega_squared);
   }
 }
 

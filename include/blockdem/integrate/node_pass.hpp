@@ -14,9 +14,10 @@
 
 namespace blockdem {
 
-/// The node contact loop of one group.
+/// The node contact loop of one group. inverse_omega_squared: as for contact_pass (the laws' closure impulse).
 template <class G, class Damping>
-void node_contact_pass(G& g, const model::Model& m, const Damping& damping, double increment_dt) {
+void node_contact_pass(G& g, const model::Model& m, const Damping& damping, double increment_dt,
+                       double inverse_omega_squared) {
   using L = typename G::LawType;
   const auto& b = m.bodies;
   const Vec3* __restrict const x = m.deformable.nodes.position.data();
@@ -48,7 +49,7 @@ void node_contact_pass(G& g, const model::Model& m, const Damping& damping, doub
     const contact::Shear du_s{du.dot(t1), du.dot(t2)};
     const auto& p = g.properties[g.property[k]];
     const double kn = L::normal_stiffness(p), ks = L::shear_stiffness(p);
-    const contact::Response r = L::update(p, g.history[k], du_n, du_s);
+    const contact::Response r = L::update(p, g.history[k], du_n, du_s, contact::Step{increment_dt, inverse_omega_squared});
     const bool active = r.damping_active;  // L::damping_active(p, g.history[k])
     double dissipated = 0.0;
     auto& spring = g.spring_state[k];
@@ -68,8 +69,9 @@ void node_contact_pass(G& g, const model::Model& m, const Damping& damping, doub
 /// Node contacts of every node group of `d`: relative velocity of the face point and the node -> increment -> law ->
 /// damping -> force.
 template <class State, class Damping>
-void node_contact_passes(State& state, const model::Model& m, const Damping& damping, double increment_dt) {
-  state.for_each_group([&](auto& g) { node_contact_pass(g, m, damping, increment_dt); });
+void node_contact_passes(State& state, const model::Model& m, const Damping& damping, double increment_dt,
+                         double inverse_omega_squared) {
+  state.for_each_group([&](auto& g) { node_contact_pass(g, m, damping, increment_dt, inverse_omega_squared); });
 }
 
 /// Trusses: axial force pretension + EA (L - L0) / L0 along the current axis.

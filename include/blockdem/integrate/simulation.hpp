@@ -106,7 +106,7 @@ class Simulation {
   /// ago, with velocities negated. For time-reversibility checks of the scheme.
   void reverse() {
     synchronize();
-    for_each_group([&](auto& g) { contact_pass(g, model_->bodies, damping_, 0.0); });
+    for_each_group([&](auto& g) { contact_pass(g, model_->bodies, damping_, 0.0, closure_inverse_omega_squared()); });
     auto& b = model_->bodies;
     // v(n+1/2) = v(n-1/2) + dt F(x_n) / m, then negate: the leapfrog run backwards from x_n.
     if (mixed_) {
@@ -128,7 +128,7 @@ class Simulation {
   /// at the start of the next step).
   void synchronize() {
     if (!pending_increment_) return;
-    for_each_group([&](auto& g) { contact_pass(g, model_->bodies, damping_, dt_); });
+    for_each_group([&](auto& g) { contact_pass(g, model_->bodies, damping_, dt_, closure_inverse_omega_squared()); });
     if (mixed_) mixed_forces(dt_);
     pending_increment_ = false;
   }
@@ -269,6 +269,14 @@ class Simulation {
     dt_ = dt;
     timestep_margin_ = check == TimestepCheck::checked && std::isfinite(critical) ? dt / critical : 0.0;
     if constexpr (damping::PreparedDamping<Damping>) damping_.prepare(dt_);
+    refresh_closure_bound();
+  }
+
+  /// closure_inverse_omega_squared() for the present contacts, masses and timestep.
+  void refresh_closure_bound() {
+    const double omega = bounded_frequency() ? omega_max() : 0.0;
+    const double half_step = 0.5 * dt_;
+    closure_inverse_omega_squared_ = omega > 0 && std::isfinite(omega) ? 1.0 / (omega * omega) : half_step * half_step;
   }
 
   /// The bounds a run must stay within (RunGuard): a velocity, traction or stress that is not finite, a speed above
@@ -286,6 +294,11 @@ class Simulation {
   // ---- state ----
 
   double timestep() const { return dt_; }
+  /// 1 / omega^2 (s^2) for the laws' closure impulse (contact/closure_impulse.hpp): omega the upper bound on
+  /// omega_max of the present contacts and masses (FrequencyBound), taken when the timestep is set and after every
+  /// re-detection (the only moments the contacts or the masses change); 2 / dt (stability alone) under static
+  /// masses, whose estimate is no bound, or while no block has a contact.
+  double closure_inverse_omega_squared() const { return closure_inverse_omega_squared_; }
   double time() const { return time_; }
   long long steps() const { return steps_; }
   const model::Model& model() const { return *model_; }
@@ -365,7 +378,8 @@ class Simulation {
   template <bool Mixed>
   void step_impl() {
     const double increment_dt = pending_increment_ ? dt_ : 0.0;
-    for_each_group([&](auto& g) { contact_pass(g, model_->bodies, damping_, increment_dt); });
+    const double inverse_omega_squared = closure_inverse_omega_squared();
+    for_each_group([&](auto& g) { contact_pass(g, model_->bodies, damping_, increment_dt, inverse_omega_squared); });
     if constexpr (Mixed) mixed_forces(increment_dt);
     // Joint histories are now at the current positions: the moment to detect contacts again if blocks have moved
     // (relative to the base) by more than the redetection distance. Forces of the new set, then the block pass.
@@ -394,7 +408,7 @@ class Simulation {
 
   /// Node contacts, elements, trusses, then what they apply to rigid blocks.
   void mixed_forces(double increment_dt) {
-    node_contact_passes(deformable_, *model_, damping_, increment_dt);
+    node_contact_passes(deformable_, *model_, damping_, increment_dt, closure_inverse_omega_squared());
     element_pass(deformable_, *model_, damping_, increment_dt);
     truss_pass(deformable_, *model_);
     gather_rigid(deformable_, *model_, increment_dt);
@@ -426,10 +440,11 @@ class Simulation {
       assign_contacts(model::detect_contacts(model_->bodies, settings_), /*keep_history=*/true);
     }
     detection_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    for_each_group([&](auto& g) { contact_pass(g, model_->bodies, damping_, 0.0); });
+    for_each_group([&](auto& g) { contact_pass(g, model_->bodies, damping_, 0.0, closure_inverse_omega_squared()); });
     if constexpr (Mixed) mixed_forces(0.0);
     contact_update_ += stored() - before;
     hold_timestep();
+    refresh_closure_bound();
   }
 
   /// After a re-detection of a dynamic run: the new contact points may have raised omega_max (eq. 1) above what
@@ -626,6 +641,7 @@ class Simulation {
     ar("density scaling safety factor", s.density_safety_);
     ar("timestep margin", s.timestep_margin_);
     ar("timestep hold", s.hold_);
+    ar("closure impulse bound", s.closure_inverse_omega_squared_);
   }
 
   model::Model* model_;
@@ -652,6 +668,7 @@ class Simulation {
   bool static_masses_ = false;  // scale_masses_for_statics() until restore_real_masses()
   double density_safety_ = 0;   // the safety factor of scale_density_to() while its masses hold; 0: not density-scaled
   double timestep_margin_ = 0;  // dt / dt_critical when the timestep was set (checked); 0: unchecked
+  double closure_inverse_omega_squared_ = 0;  // s^2, see closure_inverse_omega_squared()
   TimestepHold hold_;
   EnergyReport energy0_;
   bool energy_reference_pending_ = true;
