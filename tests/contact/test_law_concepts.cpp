@@ -41,9 +41,9 @@ struct ElasticCopy : DissipatesBase<without> {
   using Law = contact::Elastic;
   using Parameters = Law::Parameters;
   using History = Law::History;
-  static constexpr contact::Response update(const Parameters& p, History& h, double du_normal,
-                                            contact::Shear du_shear) noexcept(without != Without::noexcept_update) {
-    return Law::update(p, h, du_normal, du_shear);
+  static constexpr contact::Response update(const Parameters& p, History& h, double du_normal, contact::Shear du_shear,
+                                            const contact::Step& step = {}) noexcept(without != Without::noexcept_update) {
+    return Law::update(p, h, du_normal, du_shear, step);
   }
   static constexpr double normal_stiffness(const Parameters& p) noexcept { return Law::normal_stiffness(p); }
   static constexpr double shear_stiffness(const Parameters& p) noexcept { return Law::shear_stiffness(p); }
