@@ -18,8 +18,8 @@
 // dissipation, so that the balance closes to rounding and says what happened. The impulse delta dt changes the
 // point's relative normal speed by delta dt / m*, m* the effective mass of the two bodies at the point (per unit
 // area), which the point does not know; but a stable run bounds it below: k_n / m* <= omega^2 for every spring of
-// the model, with omega the upper bound on omega_max the timestep was set from (Simulation keeps omega = 2 s / dt,
-// s the margin of dt below the critical timestep). With mu = k_n / omega^2 <= m*:
+// the model, with omega an upper bound on omega_max (Simulation keeps FrequencyBound's for the present contacts and
+// masses, Simulation::closure_inverse_omega_squared). With mu = k_n / omega^2 <= m*:
 // - opening (e > 0, energy made): the impulse j against the motion that removes e if m* = mu removes at least e for
 //   any m* >= mu, so an impact never gives back more than it came with (restitution <= 1), exactly 1 where the
 //   point alone sets omega (one contact point, or a face landing flat on its own points);
