@@ -223,13 +223,11 @@ TEST_CASE("simulation: an undamped elastic run conserves energy and is time reve
   CHECK(sim.detections() == 1);
 }
 
-TEST_CASE("simulation: energy that a re-detection adds (CPs that start in overlap) is measured, and the joint's opening takes it back") {
+TEST_CASE("simulation: energy that a re-detection adds (CPs that start in overlap) is measured and comes back as motion") {
   // A block falls flat onto its base, undamped, without gravity. Checked every 400 steps (2 mm of fall), its contact
   // is first found 0.8 mm deep: the new CPs start with a stress of kn times that overlap, and the elastic energy
-  // 1/2 kn d^2 A appears from no force. The balance keeps it as its own term. Before the closure impulse the block
-  // left the base with exactly that much more kinetic energy than it came with (an impact found late made energy);
-  // the new CPs now owe it, and the correction at the joint's opening removes it (contact/closure_impulse.hpp): the
-  // block leaves with the kinetic energy it came with, the removal booked as the law's dissipation.
+  // 1/2 kn d^2 A appears from no force. The balance keeps it as its own term, and the block leaves the base with
+  // exactly that much more kinetic energy than it came with.
   auto s = test::block_on_base(1.0, 1.0, 0.5);  // 1,000 kg on a 1 m^2 face
   auto& b = s.model.bodies;
   s.model.gravity = Vec3::Zero();
@@ -261,15 +259,11 @@ TEST_CASE("simulation: energy that a re-detection adds (CPs that start in overla
   REQUIRE(sim.contact_points() == 0);
   const auto e = sim.energy();
   const double kinetic = 0.5 * mass * b.velocity[s.block].squaredNorm();
-  MESSAGE("rebound " << b.velocity[s.block].z() << " m/s: kinetic " << kinetic << " J against " << kinetic0 << " J at the impact, "
-                     << e.contact_update << " J added by the detection, " << e.slip << " J booked by the law; balance error "
-                     << e.balance_error);
-  // Never more than it came with; less by what the correction removes beyond the owed energy (it aims at twice
-  // what is left after a first correction, and its impulse is sized for the lightest pair the bound allows):
-  // 119.0 J of 125 measured, 37.4 J booked against the 31.6 owed.
-  CHECK(kinetic <= kinetic0);
-  CHECK(kinetic > 0.9 * kinetic0);
-  CHECK(e.slip >= created);
+  MESSAGE("rebound " << b.velocity[s.block].z() << " m/s: kinetic " << kinetic << " J against " << kinetic0 << " + " << e.contact_update
+                     << " J; balance error " << e.balance_error);
+  // Within 1 %: the force that appears at the detection also acts over the half step before it in the leapfrog's
+  // energy (1/2 dt v F = 0.2 J here, 0.6 % of what was added; it shrinks with the timestep).
+  CHECK(kinetic - kinetic0 == doctest::Approx(created).epsilon(0.01));
   CHECK(e.balance_error < 2e-3);  // without the term: 20 %
 }
 

@@ -121,13 +121,6 @@ struct ClosureImpulse {
     return delta;
   }
 
-  /// Energy (J/m^2) a contact point holds that no force stored: one found in overlap by a re-detection where the
-  /// pair had no contact (an impact between two detections). The next crossing's correction removes it with its own
-  /// error (the joint opening after the impact).
-  void owe(double energy) noexcept {
-    if (energy > 0.0) set_remaining(remaining_energy() + energy);
-  }
-
   double stress() const noexcept { return from_bfloat16(stress_bits); }
   double remaining_energy() const noexcept {
     float f;

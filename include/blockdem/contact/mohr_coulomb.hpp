@@ -142,11 +142,6 @@ struct MohrCoulomb {
   static void turn_shear(History& h, const ShearTurn& turn) noexcept { turn.apply(h.shear[0], h.shear[1]); }
   static constexpr double damage(const History& h) noexcept { return h.failed ? 1.0 : 0.0; }
   static constexpr void start_unbonded(History& h) noexcept { h.failed = contact::never_bonded; }
-  /// A contact point found in overlap where the pair had no contact: its spring's energy is owed to the closure
-  /// impulse (contact/closure_impulse.hpp), after start_unbonded.
-  static void owe_stored_energy(const Parameters& p, History& h) noexcept {
-    if (h.gap < 0) h.impulse.owe(0.5 * p.normal_stiffness * h.gap * h.gap);
-  }
   static constexpr bool never_bonded(const History& h) noexcept { return h.failed == contact::never_bonded; }
   static constexpr bool dissipates = true;  // slip
 };

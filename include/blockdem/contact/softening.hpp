@@ -426,11 +426,6 @@ struct ElastoSoftening {
     h.damage = 1.0;
   }
   static constexpr bool never_bonded(const History& h) noexcept { return h.failed == contact::never_bonded; }
-  /// A contact point found in overlap where the pair had no contact: its spring's energy is owed to the closure
-  /// impulse (contact/closure_impulse.hpp), after start_unbonded.
-  static void owe_stored_energy(const Parameters& p, History& h) noexcept {
-    if (h.gap < 0) h.impulse.owe(normal_energy(p, h));
-  }
   static constexpr bool dissipates = true;  // cracking, crushing, slip
 
   // ---- the current state, for output and tests ----

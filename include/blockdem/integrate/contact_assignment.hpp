@@ -228,8 +228,7 @@ class ContactAssignment {
         }
       }
       const bool inherits = from == Inheritance::same_point || from == Inheritance::same_joint;
-      const typename L::History h = inherited_history<L>(from, inherits ? &o->history[source] : nullptr, c->gap, turn,
-                                                                 g.properties[p]);
+      const typename L::History h = inherited_history<L>(from, inherits ? &o->history[source] : nullptr, c->gap, turn);
       typename G::SpringState spring{};
       double slip = 0, viscous = 0;
       if (from == Inheritance::same_point) {

@@ -21,12 +21,10 @@ enum class Inheritance {
 };
 
 /// The law's history of a contact point found with gap `gap` (m) whose state comes from `old` (same_point and
-/// same_joint; null otherwise), its shear turned to the new contact frame by `turn`. A new contact found in overlap
-/// holds energy no force stored (an impact between two detections): a law with a closure impulse
-/// (owe_stored_energy) removes it at the point's next crossing.
+/// same_joint; null otherwise), its shear turned to the new contact frame by `turn`.
 template <contact::ContactLaw L>
 typename L::History inherited_history(Inheritance from, const typename L::History* old, double gap,
-                                      const contact::ShearTurn& turn, const typename L::Parameters& params) noexcept {
+                                      const contact::ShearTurn& turn) noexcept {
   typename L::History h{};
   h.gap = gap;
   switch (from) {
@@ -43,7 +41,6 @@ typename L::History inherited_history(Inheritance from, const typename L::Histor
       break;
     case Inheritance::new_contact:
       L::start_unbonded(h);
-      if constexpr (requires { L::owe_stored_energy(params, h); }) L::owe_stored_energy(params, h);
       break;
   }
   return h;

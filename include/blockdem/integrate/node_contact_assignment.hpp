@@ -256,7 +256,7 @@ class NodeContactAssignment {
           const auto [ot1, ot2] = old_tangents(m, og, source);
           turn = shear_turn(ot1, ot2, tt1, n.cross(tt1));
         }
-        g.history[k] = inherited_history<L>(from, inherits ? &og.history[source] : nullptr, gap, turn, params);
+        g.history[k] = inherited_history<L>(from, inherits ? &og.history[source] : nullptr, gap, turn);
         if (from == Inheritance::same_point) {
           g.spring_state[k] = inherited_spring_state(og.spring_state[source], turn);
           slip = og.slip_dissipation[source];
