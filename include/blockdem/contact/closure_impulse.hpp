@@ -93,9 +93,18 @@ struct ClosureImpulse {
   /// (dt = 0); else the second half of the last correction's work booked, the crossing's `error` (J/m^2, + made;
   /// 0 if no kink was crossed in this step) booked, and a new correction for what is left, at a crossing and after
   /// it while an excess is left. `dissipated` (J/m^2) gets the bookings; `du`, `sigma`, `kn`: as closure_correction.
-  double step(double error, double du, double sigma, double kn, const Step& s, double& dissipated) noexcept {
+  /// Inline where nothing is to be done (the common case, one test); the rest out of line, so that the fused
+  /// contact loop keeps its law inline.
+  [[gnu::always_inline]] double step(double error, double du, double sigma, double kn, const Step& s,
+                                     double& dissipated) noexcept {
     if (stress_bits == 0 && error == 0.0) [[likely]]
       return 0.0;
+    return correct(error, du, sigma, kn, s, dissipated);
+  }
+
+  /// step() past its test.
+  [[gnu::noinline]] double correct(double error, double du, double sigma, double kn, const Step& s,
+                                   double& dissipated) noexcept {
     const double last = stress();
     if (!(s.dt > 0.0)) return last;
     // The last correction's work over this step, the second half of its trapezoid (it removed -delta du / 2).
