@@ -166,8 +166,9 @@ class Simulation {
   /// free block or node has a spring. omega_max: the upper bound of FrequencyBound; under static masses the largest
   /// of sqrt(k / m) over the nodes (eq. 2-3) and over the free blocks sqrt(k / m) for translation and
   /// sqrt(k r^2 / I_min) for rotation, k the sum of max(k_n, k_s) A of their contact points.
-  double critical_timestep() const {
-    const double omega = omega_max();
+  double critical_timestep() const { return critical_timestep(omega_max()); }
+  /// The same for a given omega_max (rad/s).
+  double critical_timestep(double omega) const {
     if (omega == 0) return std::numeric_limits<double>::infinity();
     return 2.0 / omega * damping_.timestep_factor(omega);
   }
@@ -273,8 +274,9 @@ class Simulation {
   }
 
   /// closure_inverse_omega_squared() for the present contacts, masses and timestep.
-  void refresh_closure_bound() {
-    const double omega = bounded_frequency() ? omega_max() : 0.0;
+  void refresh_closure_bound() { set_closure_bound(bounded_frequency() ? omega_max() : 0.0); }
+  /// The same from omega_max already computed (0: none, or static masses).
+  void set_closure_bound(double omega) {
     const double half_step = 0.5 * dt_;
     closure_inverse_omega_squared_ = omega > 0 && std::isfinite(omega) ? 1.0 / (omega * omega) : half_step * half_step;
   }
@@ -443,8 +445,9 @@ class Simulation {
     for_each_group([&](auto& g) { contact_pass(g, model_->bodies, damping_, 0.0, closure_inverse_omega_squared()); });
     if constexpr (Mixed) mixed_forces(0.0);
     contact_update_ += stored() - before;
-    hold_timestep();
-    refresh_closure_bound();
+    // One FrequencyBound per re-detection (its 6 x 6 eigenproblems per block are most of a violent run's detection
+    // time): the timestep's hold and the closure impulse share it.
+    set_closure_bound(hold_timestep());
   }
 
   /// After a re-detection of a dynamic run: the new contact points may have raised omega_max (eq. 1) above what
@@ -453,30 +456,34 @@ class Simulation {
   /// target, at their present velocities (the kinetic energy this adds is a change of the model, kept in the
   /// balance's contact_update term); any other run with a checked timestep keeps its margin dt / dt_critical by
   /// lowering the timestep. Without this, one stiff new contact point at a light node diverges in a few steps.
-  void hold_timestep() {
-    if (!bounded_frequency()) return;  // static masses (settling): the estimate's wide margin, and local damping
+  /// Returns omega_max() after the hold (0 under static masses), from one FrequencyBound unless it raised masses.
+  double hold_timestep() {
+    if (!bounded_frequency()) return 0.0;  // static masses (settling): the estimate's wide margin, and local damping
     if (density_safety_ > 0) {
       ++hold_.checks;
       const MassPlan plan = plan_masses(*model_, groups_, deformable(), real_masses(), bounded_frequency(), dt_, density_safety_,
                                         MassRule::raise_only, [&](double omega) { return damping_.timestep_factor(omega); });
       const MassRaise raised = raise_masses(*model_, plan, deformable_.node_inverse_mass, blocks_);
-      if (raised.nodes + raised.blocks == 0) return;
+      if (raised.nodes + raised.blocks == 0) return plan.omega_max;
       ++hold_.raises;
       hold_.raised_nodes += raised.nodes;
       hold_.raised_blocks += raised.blocks;
       hold_.added_mass += raised.added;
       hold_.kinetic_energy += raised.kinetic;
       contact_update_ += raised.kinetic;
-    } else if (timestep_margin_ > 0) {
-      ++hold_.checks;
-      const double critical = critical_timestep();
-      if (!(dt_ > timestep_margin_ * critical)) return;
-      const double margin = timestep_margin_;
-      set_timestep(margin * critical);
-      timestep_margin_ = margin;
-      ++hold_.reductions;
-      hold_.smallest_dt = dt_;
+      return omega_max();
     }
+    const double omega = omega_max();
+    if (!(timestep_margin_ > 0)) return omega;
+    ++hold_.checks;
+    const double critical = critical_timestep(omega);
+    if (!(dt_ > timestep_margin_ * critical)) return omega;
+    const double margin = timestep_margin_;
+    set_timestep(margin * critical);
+    timestep_margin_ = margin;
+    ++hold_.reductions;
+    hold_.smallest_dt = dt_;
+    return omega;
   }
 
   /// The mass scaling of scale_density_to() and scale_masses_for_statics(), by `rule`.

@@ -62,6 +62,9 @@ enum class MassRule { raise_only, exact };
 struct MassPlan {
   std::vector<double> node_mass, block_mass;
   std::vector<Vec3> block_inertia;
+  /// FrequencyBound's omega_max (rad/s) for the masses before the plan, when the plan was made from it (partial
+  /// density scaling under bounded frequency; 0 otherwise): what omega_max() gives while no mass changes.
+  double omega_max = 0;
 };
 
 /// The real (unscaled) masses and principal inertias of the rigid blocks.
@@ -184,10 +187,13 @@ MassPlan plan_masses(const model::Model& m, const Groups& groups, const Deformab
                                  : omega2 / row.coupled;
     return 1.0 / (x * x) * margin;
   };
+  double largest = 0;  // omega_max^2 of the bound, from the rows the plan computes anyway (their eigenproblems)
   for (std::size_t i = 0; i < nd.size(); ++i) {
+    const FrequencyBound::Row row = bounded ? bound->node_row(i) : FrequencyBound::Row{};
+    largest = std::max(largest, row.omega_squared());
     if ((nd.fixity[i] & 7) == 7) continue;
     if (bounded) {
-      plan.node_mass[i] *= bounded_factor(bound->node_row(i));
+      plan.node_mass[i] *= bounded_factor(row);
       continue;
     }
     const double required = kn[i] / omega2;
@@ -196,13 +202,15 @@ MassPlan plan_masses(const model::Model& m, const Groups& groups, const Deformab
   const auto& real_mass = *real.mass;
   const auto& real_inertia = *real.inertia;
   for (std::size_t i = 0; i < b.size(); ++i) {
+    const FrequencyBound::Row row = bounded ? bound->row(i) : FrequencyBound::Row{};
+    largest = std::max(largest, row.omega_squared());
     if (b.motion[i] != model::Motion::free || m.deformable.is_deformable(i)) continue;
     const bool translates = (b.fixity[i] & 7) != 7;
     const bool turns = (b.fixity[i] & model::Fixity::all_rotations) != model::Fixity::all_rotations;
     double& mass = plan.block_mass[i];
     Vec3& inertia = plan.block_inertia[i];
     if (bounded) {
-      const double factor = bounded_factor(bound->row(i));
+      const double factor = bounded_factor(row);
       mass *= factor;
       inertia *= factor;
     } else if (rule == MassRule::raise_only) {
@@ -216,6 +224,7 @@ MassPlan plan_masses(const model::Model& m, const Groups& groups, const Deformab
       inertia = turns && kr[i] > 0 ? Vec3(real_inertia[i] * (kr[i] / omega2 / real_inertia[i].minCoeff())) : real_inertia[i];
     }
   }
+  plan.omega_max = std::sqrt(largest);
   return plan;
 }
 
