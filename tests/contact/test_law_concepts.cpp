@@ -29,7 +29,7 @@ struct Dissipates {
 };
 struct NoDissipates {};
 struct VariableDissipates {
-  static inline bool dissipates = false;  // not a constant: the contact pass could not decide at compile time
+  [[maybe_unused]] static inline bool dissipates = false;  // not a constant: the contact pass could not decide at compile time
 };
 template <Without without>
 using DissipatesBase = std::conditional_t<without == Without::dissipates, NoDissipates,

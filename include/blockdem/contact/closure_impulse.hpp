@@ -134,7 +134,7 @@ struct ClosureImpulse {
   double remaining_energy() const noexcept {
     float f;
     std::memcpy(&f, remaining_bits, sizeof f);
-    return f;
+    return static_cast<double>(f);
   }
 
  private:
@@ -153,7 +153,7 @@ struct ClosureImpulse {
     const std::uint32_t bits = static_cast<std::uint32_t>(b) << 16;
     float f;
     std::memcpy(&f, &bits, sizeof f);
-    return f;
+    return static_cast<double>(f);
   }
   static double round_to_bfloat16(double x) noexcept { return from_bfloat16(to_bfloat16(x)); }
 };

@@ -311,7 +311,12 @@ inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, 
         // passes there. Otherwise rounding, and the joints' own closure as the vault settles, would pick a plane
         // that a face meets at an angle, and the pair would get edge CPs as stiff as a joint's. Planes within a
         // hundredth of the tolerance count as equal: a pair pressed together along the line gets its edge CPs once
-        // they overlap by about that much.
+        // they overlap by about that much. Why a hundredth: the allowance must exceed what separates the planes
+        // through a line contact, rounding (1e-15 m) and the joints' elastic closure as the structure settles
+        // (sigma / k_n: 2.5 um for a stress of 0.1 MPa on the vault's joints, k_n = 3.9e10 Pa/m by eq. 7), and
+        // stay small against the tolerance, which sets where contacts are resolved at all. At the default 1 mm it
+        // is 10 um: an edge CP missed up to there would carry k_n 10 um = 0.4 MPa on the vault's joints, the
+        // tensile strength's order and 4 % of the compressive one, until the overlap passes it.
         if (detail::aligned_face_plane(planes[a], world[a], planes[b], world[b], separation - 0.01 * settings.tolerance,
                                        cos_max, n_common, separation)) {
           face_to_face = true;
@@ -333,6 +338,12 @@ inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, 
         fa = supporting_face(world[a], planes[a].normal, n_common, cos_a);
         fb = supporting_face(world[b], planes[b].normal, -n_common, cos_b);
         // A face nearly perpendicular to the plane projects onto a sliver; a gap measured across it means nothing.
+        // cos < 0.05 is a face within 3 degrees of perpendicular: its projection is under 5 % of its width wide,
+        // and its CPs' tributary areas would change by their whole size with a rotation of 3 degrees, which
+        // blocks in contact turn through between detections in a rocking or a collapse. The supporting face is
+        // the best aligned of the faces through the block's vertex furthest along the normal, so this is a vertex
+        // with no face that faces the plane (a needle's tip, an edge of two faces both near perpendicular): no
+        // area to draw CPs from.
         if (cos_a < 0.05 || cos_b < 0.05) continue;
       }
 
@@ -359,6 +370,10 @@ inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, 
       };
       // Corners only where edges of the two faces nearly coincide (geometry::drop_shallow_vertices): features
       // finer than a quarter of the tolerance are not resolved, and the CPs stay where they are between detections.
+      // Why a quarter: the blocks move up to the re-detection distance (half the tolerance by default) between
+      // detections, so a finer feature of the overlap is below what a detection resolves; dropping a vertex
+      // within tolerance / 4 of its chord changes the overlap's area by at most tolerance / 8 times that chord
+      // (a triangle's area), a sliver of the joint, and moves no CP by more than tolerance / 4.
       const auto overlap = geometry::drop_shallow_vertices(
           detail::clip_convex(project(world[a], fa, false), project(world[b], fb, true)), 0.25 * settings.tolerance,
           settings.max_normal_angle);
