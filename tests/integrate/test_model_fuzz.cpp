@@ -14,15 +14,18 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <map>
 #include <sstream>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -871,17 +874,30 @@ std::vector<Row> seeded_rows(int n) {
   return r;
 }
 
+/// The integer in the environment variable `name`, or `unset` without one; anything but an integer in [lo, hi]
+/// fails the test, naming the variable, the range and the text.
+int environment_integer(const char* name, int lo, int hi, int unset) {
+  const char* text = std::getenv(name);
+  if (!text) return unset;
+  const char* end = text + std::strlen(text);
+  int value = 0;
+  const auto [stop, error] = std::from_chars(text, end, value);
+  if (error != std::errc{} || stop != end || value < lo || value > hi)
+    FAIL(std::string(name) << " must be an integer in [" << lo << ", " << hi << "], got '" << std::string(text) << "'");
+  return value;
+}
+
 TEST_CASE("model fuzz: random models build or refuse bad input, stay finite and close their energy balance") {
-  const char* only = std::getenv("BLOCKDEM_FUZZ_ONLY");
-  const char* seeds = std::getenv("BLOCKDEM_FUZZ_SEEDS");
-  const auto all = seeds ? seeded_rows(std::atoi(seeds)) : rows();
+  const int only = environment_integer("BLOCKDEM_FUZZ_ONLY", 0, std::numeric_limits<int>::max(), -1);
+  const int seeds = environment_integer("BLOCKDEM_FUZZ_SEEDS", 1, 1000000, 0);
+  const auto all = seeds > 0 ? seeded_rows(seeds) : rows();
   std::vector<double> balances;  // of the rigid models without local damping (their own tolerance)
   const auto start = std::chrono::steady_clock::now();
   int models = 0;
   double worst = 0;
   std::map<std::string, int> cells;  // kinematics x policy x scaling x ties x base motion
   for (const Row& row : all) {
-    if (only && std::atoi(only) != row.index) continue;
+    if (only >= 0 && only != row.index) continue;
     std::ostringstream head;
     head << "row " << row.index << " (seed 0x" << std::hex << row.seed << std::dec << "): " << name(row.kinematics) << ", "
          << name(row.policy) << (row.density_scaling ? ", density scaling" : "") << (row.ties ? ", ties" : "")
