@@ -90,7 +90,12 @@ static_assert(!contact::ContactLaw<ElasticCopy<Without::noexcept_update>>);
 static_assert(!contact::ContactLaw<ThrowingDamage>);
 
 // The traits are constant expressions where the law allows.
-static_assert(!contact::Elastic::dissipates && contact::MohrCoulomb::dissipates && contact::ElastoSoftening::dissipates);
+static_assert(contact::Elastic::dissipates && contact::MohrCoulomb::dissipates && contact::ElastoSoftening::dissipates);
+static_assert([] {
+  contact::Elastic::History h{};
+  contact::Elastic::start_unbonded(h);
+  return contact::Elastic::never_bonded(h) && contact::Elastic::damage(h) == 0.0;  // new, not broken: no damage
+}());
 static_assert([] {
   contact::MohrCoulomb::History h{};
   contact::MohrCoulomb::start_unbonded(h);
@@ -113,7 +118,8 @@ typename Law::Parameters bonded() {
   else static_assert(test::unlisted<Law>, "a new law: give it a bonded joint here");
 }
 
-/// Whether the law has a bond to lose (and so a failed state that a never-bonded contact point starts from).
+/// Whether the law has a bond to lose (and so a failed state, damage 1, that a never-bonded contact point starts
+/// from). The elastic law's joints never break; its never-bonded points carry no tension but are not damage.
 template <class Law>
 constexpr bool has_bond() {
   if constexpr (std::is_same_v<Law, contact::Elastic>) return false;
@@ -166,14 +172,17 @@ TEST_CASE_TEMPLATE_DEFINE("contact law traits: start_unbonded, never_bonded and 
   CHECK_FALSE(Law::never_bonded(fresh));
   CHECK(Law::damage(fresh) == 0.0);
 
-  // A contact point that appeared during the run: failed from the start (damage 1) where the law has a bond.
+  // A contact point that appeared during the run: marked, and failed from the start (damage 1) where the law has a
+  // bond.
   typename Law::History h{};
   Law::start_unbonded(h);
-  CHECK(Law::never_bonded(h) == has_bond<Law>());
+  CHECK(Law::never_bonded(h));
   CHECK(Law::damage(h) == (has_bond<Law>() ? 1.0 : 0.0));
   for (int i = 0; i < 100; ++i) Law::update(p, h, i < 50 ? -1e-8 : 2e-8, {1e-7, -1e-7});  // closes, slides, opens
-  CHECK(Law::never_bonded(h) == has_bond<Law>());
+  CHECK(Law::never_bonded(h));
   CHECK(Law::damage(h) == (has_bond<Law>() ? 1.0 : 0.0));
+  CHECK(h.gap > 0);
+  CHECK(Law::traction(p, h) == contact::Traction{0.0, 0.0, 0.0});  // open and never bonded: no stress of any kind
 
   // A bonded joint torn open by a millimetre: broken (damage 1 to within the law's failure damage), not never-bonded.
   typename Law::History torn{};
@@ -185,12 +194,47 @@ TEST_CASE_TEMPLATE_DEFINE("contact law traits: start_unbonded, never_bonded and 
 }
 TEST_CASE_TEMPLATE_APPLY(unbonded_case, contact::ShippedLaws);
 
-TEST_CASE_TEMPLATE_DEFINE("contact law traits: a law dissipates along a millimetre of slip exactly when it says it does", Law, dissipates_case) {
+TEST_CASE_TEMPLATE_DEFINE("contact law traits: a law dissipates along a millimetre of slip exactly when it has a strength", Law, dissipates_case) {
   const auto p = bonded<Law>();
   typename Law::History h{};
   double dissipated = 0.0;
   Law::update(p, h, -1e-6, {0.0, 0.0});  // closed: 1e4 Pa and more of compression
   for (int i = 0; i < 1000; ++i) dissipated += Law::update(p, h, 0.0, {1e-6, 0.0}).dissipated;
-  CHECK((dissipated > 0.0) == Law::dissipates);
+  CHECK((dissipated > 0.0) == has_bond<Law>());
+  CHECK((dissipated > 0.0) <= Law::dissipates);  // what it returns, it says it can
 }
 TEST_CASE_TEMPLATE_APPLY(dissipates_case, contact::ShippedLaws);
+
+TEST_CASE("elastic law: a never-bonded point carries no tension, and lets its shear go as it opens") {
+  // Reference: a linear spring in compression only. Closed by 1e-6 m and sheared by 1e-6 m it stores
+  // 1/2 k_n d^2 + 1/2 k_s s^2; opened, it carries nothing, and the shear energy it held is dissipated (the work on
+  // the shear springs over the opening step, -(tau + 0)/2 ds with ds = 0, less the change of stored energy).
+  const contact::Elastic::Parameters p(1e10, 4e9);
+  contact::Elastic::History h{};
+  h.gap = 2e-4;  // found open by 0.2 mm, within the tolerance: a bonded point would pull with 2 MPa
+  contact::Elastic::start_unbonded(h);
+  auto r = contact::Elastic::update(p, h, 0.0, {0.0, 0.0});
+  CHECK(r.normal_stress == 0.0);
+  CHECK_FALSE(r.damping_active);
+  CHECK(contact::Elastic::stored_energy(p, h) == 0.0);
+  r = contact::Elastic::update(p, h, -2e-4 - 1e-6, {0.0, 0.0});  // closes: no time passes, so no closure correction
+  CHECK(r.normal_stress == test::approx(1e4).epsilon(1e-9));
+  CHECK(r.damping_active);
+  r = contact::Elastic::update(p, h, 0.0, {1e-6, 0.0});
+  CHECK(r.shear_stress[0] == test::approx(-4e3).epsilon(1e-12));
+  CHECK(r.dissipated == 0.0);
+  const double held = 0.5 * 4e3 * 4e3 / 4e9;
+  CHECK(contact::Elastic::stored_energy(p, h) == test::approx(0.5 * 1e10 * 1e-12 + held).epsilon(1e-9));
+  r = contact::Elastic::update(p, h, 3e-6, {0.0, 0.0});  // opens by 2 micrometres
+  CHECK(r.normal_stress == 0.0);
+  CHECK(r.shear_stress == contact::Shear{0.0, 0.0});
+  CHECK(r.dissipated == test::approx(held).epsilon(1e-12));
+  CHECK(contact::Elastic::stored_energy(p, h) == 0.0);
+
+  // A bonded point at the same gaps: tension through 0, and nothing dissipated.
+  contact::Elastic::History g{};
+  g.gap = 2e-4;
+  r = contact::Elastic::update(p, g, 0.0, {0.0, 0.0});
+  CHECK(r.normal_stress == test::approx(-2e6).epsilon(1e-12));
+  CHECK(r.damping_active);
+}

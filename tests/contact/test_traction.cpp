@@ -36,6 +36,7 @@ long long traction_mismatches(const std::vector<typename Law::Parameters>& sets,
   for (int path = 0; path < paths; ++path) {
     const auto& p = sets[static_cast<std::size_t>(path) % sets.size()];
     typename Law::History h{};
+    if (path % 3 == 2) Law::start_unbonded(h);  // a contact point found during the run
     const double drift = random.uniform() < 0.3 ? -0.4 : 0.0;
     for (int i = 0; i < 250; ++i) {
       auto increment = [&](double bias) {
@@ -139,13 +140,15 @@ TEST_CASE_TEMPLATE_DEFINE("every joint law: the traction and damping switch its 
   long long inelastic = 0, inactive = 0;
   CHECK(traction_mismatches<Law>(c.sets, c.paths, inelastic, inactive) == 0);
   const long long steps = 250LL * c.paths;
-  if constexpr (Law::dissipates) {
+  if constexpr (std::is_same_v<Law, contact::Elastic>) {
+    // Only its never-bonded paths (a third) open, and of their steps only those that open with shear held dissipate.
+    CHECK(inelastic > 0);
+    CHECK(inactive > steps / 20);
+    CHECK(inactive < steps / 3);
+  } else {
     CHECK(inelastic > steps / 20);  // the paths slip, crack, crush or open, not only the elastic range
     CHECK(inactive > steps / 20);   // both values of the switch are checked
     CHECK(inactive < steps);
-  } else {
-    CHECK(inelastic == 0);
-    CHECK(inactive == 0);
   }
 }
 TEST_CASE_TEMPLATE_APPLY(traction_law_case, contact::ShippedLaws);

@@ -82,7 +82,7 @@ struct ShearTurn {
 /// - `start_unbonded(history)`: the state of a contact point that appears during the run where there was no contact
 ///   (an impact after separation, a new pair after sliding): it never was part of a bonded joint, so it starts from
 ///   the law's failed state (no tension, residual cohesion), and a joint that broke and separated does not heal when
-///   it closes again; a law without a bond leaves the history as it is;
+///   it closes again; a law whose joints never break (the elastic law) carries no tension there;
 /// - `never_bonded(history) -> bool`: the point started so (start_unbonded) and the law kept it: output and damage
 ///   counts tell it from a joint that broke;
 /// - `dissipates`, a constant: whether update() can return a non-zero `dissipated`; the contact pass books no slip
