@@ -84,7 +84,9 @@ inline double closure_correction(double error, double du, double sigma, double k
 /// steps (gravity, other contacts) change that work by a fraction of order g dt / v at a relative speed v: in the
 /// samples after the crossing, an excess left (energy still made, measured) gets a further correction aimed at
 /// twice it, so that other forces up to half the speed's change per step cannot leave one; the follow-ups stop at
-/// the first shortfall, which is a loss and stays booked. Laws call `step` once per update().
+/// the first shortfall, which is a loss and stays booked. Laws call `step` once per update(), with the error of any
+/// step in which their normal spring's path bent (a kink crossed, a bond broken, a joint cracked or crushed): the
+/// trapezoid of the stresses at both samples, less the change of stored energy and what the law booked.
 struct ClosureImpulse {
   std::uint16_t stress_bits = 0;        // Pa, bfloat16: the correction applied at the last sample (0: none)
   std::uint16_t remaining_bits[2] = {};  // J/m^2, float: what the corrections have yet to remove (+) or give back (-)

@@ -77,17 +77,23 @@ struct MohrCoulomb {
     // last step while the joint carried more tension than the residual strength): the energy the normal spring loses
     // at its present gap (normal_energy), released by no force. Once per failure, never negative.
     double dissipated = 0.0;
-    double kink_crossing = 0.0;  // J/m^2, the trapezoid error of a step across the kink
+    bool bent = false;  // the spring's path bent within the step: the bond broke, or the kink was crossed
     if (failed && (!failed_before || normal_before < -p.residual_tensile_strength)) [[unlikely]] {
       dissipated = normal_energy(p, elastic > -p.tensile_strength ? elastic : -p.tensile_strength, h.gap) -
                     normal_energy(p, sigma, h.gap);
+      bent = true;
     } else if ((gap_before * p.normal_stiffness > tension) != (h.gap * p.normal_stiffness > tension)) [[unlikely]] {
       // The normal spring crossed its kink at the cut-off (gap T / k_n; 0 without tension): closed or opened
       // between the samples (contact/closure_impulse.hpp).
-      const double kink = tension / p.normal_stiffness;
-      const double y0 = gap_before - kink, y1 = h.gap - kink;
-      kink_crossing = kink_error(y0, y1, y0 > 0.0 ? 0.0 : p.normal_stiffness, y1 > 0.0 ? 0.0 : p.normal_stiffness);
+      bent = true;
     }
+    // Where it bent, the trapezoid of the stresses at both samples (the scheme's work) differs from the change of
+    // stored energy and what was booked: the step's error (J/m^2, + made), which the closure impulse removes where
+    // it is energy made, and books. Across the kink it is 1/2 y0 y1 (k1 - k0), y the gap from the kink; where the
+    // bond breaks, the drop at the failure gap against the trapezoid across the step.
+    const double kink_crossing = bent ? 0.5 * (normal_before + sigma) * du_normal + normal_energy(p, sigma, h.gap) -
+                                            normal_energy(p, normal_before, gap_before) + dissipated
+                                      : 0.0;
     const double correction = h.impulse.step(kink_crossing, du_normal, sigma, p.normal_stiffness, step, dissipated);
     Shear tau{h.shear[0] - p.shear_stiffness * du_shear[0], h.shear[1] - p.shear_stiffness * du_shear[1]};
     // Comparisons, not std::fmax: GCC calls libm for fmax (its NaN rules), one call per CP-step in the hot loop.
