@@ -26,9 +26,11 @@ struct EnergyReport {
   double base_work = 0;     // done by the base blocks on the rest
   double viscous = 0;       // dissipated by viscous damping
   double slip = 0;          // dissipated by the joint laws (friction, softening)
-  // Stored in the contacts by re-detection, not by any force: CPs that start in overlap, minus the energy of CPs
-  // dropped while loaded, plus that of CPs whose tributary area changed (a change of the discrete model, as a
-  // contact's polygon changes; with the joints intact it stays near 0).
+  // Changes of the discrete model, done by no force: the energy re-detection stores in the contacts (CPs that start
+  // in overlap, minus the energy of CPs dropped while loaded, plus that of CPs whose tributary area changed; with
+  // the joints intact it stays near 0), the kinetic energy of the masses the timestep hold raises, and the change of
+  // the scheme's kinetic energy measure at a step taken with another timestep than the move before it
+  // (half_step_kinetic).
   double contact_update = 0;
   double balance_error = 0; // |change of (kinetic + elastic + viscous + slip) - work - contact_update| / the largest term
 };
@@ -45,6 +47,26 @@ inline EnergyReport with_balance(EnergyReport e, const EnergyReport& e0) {
                                  e0.kinetic + e0.elastic, 1e-300});
   e.balance_error = std::abs(change) / scale;
   return e;
+}
+
+/// The kinetic energy of the free blocks and the nodes at their present half-step velocities alone,
+/// 1/2 m v(n-1/2).v(n-1/2) (+ 1/2 w.I.w in the block's frame), before the velocity update of step n. The scheme's
+/// kinetic energy at step n is 1/2 m v(n-1/2).v(n+1/2) (BlockState::kinetic): its part beyond this one,
+/// 1/2 m v(n-1/2).(v(n+1/2) - v(n-1/2)), is the impulse of the step's forces over dt, so that a step taken with
+/// another timestep than the move before it changes the measure by that part times 1 - dt_old / dt_new
+/// (Simulation: the timestep change, booked with the model's other changes in contact_update).
+inline double half_step_kinetic(const model::Model& m) {
+  const auto& b = m.bodies;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < b.size(); ++i) {
+    if (b.motion[i] != model::Motion::free) continue;
+    const Vec3 w = b.rotation[i].transpose() * b.angular_velocity[i];  // in the principal frame
+    sum += 0.5 * b.mass[i] * b.velocity[i].squaredNorm() +
+           0.5 * (b.principal_inertia[i].array() * w.array() * w.array()).sum();
+  }
+  const auto& nd = m.deformable.nodes;
+  for (std::size_t i = 0; i < nd.size(); ++i) sum += 0.5 * nd.mass[i] * nd.velocity[i].squaredNorm();
+  return sum;
 }
 
 /// Adds the blocks' kinetic energy, work of gravity and of the base, and viscous work to `e`.

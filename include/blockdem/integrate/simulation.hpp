@@ -128,8 +128,8 @@ class Simulation {
   /// at the start of the next step).
   void synchronize() {
     if (!pending_increment_) return;
-    for_each_group([&](auto& g) { contact_pass(g, model_->bodies, damping_, dt_, closure_inverse_omega_squared()); });
-    if (mixed_) mixed_forces(dt_);
+    for_each_group([&](auto& g) { contact_pass(g, model_->bodies, damping_, move_timestep(), closure_inverse_omega_squared()); });
+    if (mixed_) mixed_forces(move_timestep());
     pending_increment_ = false;
   }
 
@@ -379,7 +379,9 @@ class Simulation {
 
   template <bool Mixed>
   void step_impl() {
-    const double increment_dt = pending_increment_ ? dt_ : 0.0;
+    // The increment of the positions since the last step is the move the last step made (its timestep; the present
+    // one unless set since).
+    const double increment_dt = pending_increment_ ? move_timestep() : 0.0;
     const double inverse_omega_squared = closure_inverse_omega_squared();
     for_each_group([&](auto& g) { contact_pass(g, model_->bodies, damping_, increment_dt, inverse_omega_squared); });
     if constexpr (Mixed) mixed_forces(increment_dt);
@@ -389,11 +391,19 @@ class Simulation {
       steps_since_check_ = 0;
       if (moved_since_detection_) redetect_and_update<Mixed>();
     }
+    // A step with another timestep than the move before it (set_timestep() between steps, the hold after a
+    // re-detection): the scheme's kinetic energy 1/2 m v(n-1/2).v(n+1/2) changes its measure with it (energy.hpp,
+    // half_step_kinetic); the change is booked with the model's other changes, as what the balance must not count.
+    const bool timestep_changed = increment_dt > 0.0 && dt_ != increment_dt && !energy_reference_pending_;
+    const double half_step = timestep_changed ? half_step_kinetic(*model_) : 0.0;
     run_block_pass<Mixed>(increment_dt, /*move=*/true);
     if constexpr (Mixed) {
       const bool nodes_moved = node_pass(deformable_, *model_, damping_, dt_, increment_dt, true, settings_.redetection());
       moved_since_detection_ = moved_since_detection_ || nodes_moved;
     }
+    if (timestep_changed) [[unlikely]]
+      contact_update_ += (1.0 - increment_dt / dt_) * (free_kinetic() - half_step);
+    last_move_dt_ = dt_;
     // The scheme conserves 1/2 m v(n-1/2).v(n+1/2) + U(x_n): the reference is its value at the first step.
     if (energy_reference_pending_) {
       energy0_ = energy_terms();
@@ -533,6 +543,20 @@ class Simulation {
     return false;
   }
 
+  /// The timestep of the last step's move (the present one before any step).
+  double move_timestep() const { return last_move_dt_ > 0.0 ? last_move_dt_ : dt_; }
+
+  /// The scheme's kinetic energy at the present step, of the free blocks and the nodes.
+  double free_kinetic() const {
+    const auto& b = model_->bodies;
+    double sum = 0.0;
+    for (std::size_t i = 0; i < b.size(); ++i)
+      if (b.motion[i] == model::Motion::free) sum += blocks_.kinetic[i];
+    if (mixed_)
+      for (const double k : deformable_.node_kinetic) sum += k;
+    return sum;
+  }
+
   EnergyReport energy_terms() const {
     EnergyReport e;
     e.slip = retired_slip_;
@@ -645,6 +669,7 @@ class Simulation {
     ar("retired slip", s.retired_slip_);
     ar("retired viscous work", s.retired_viscous_);
     ar("energy added by contact updates", s.contact_update_);
+    ar("timestep of the last move", s.last_move_dt_);
     ar("density scaling safety factor", s.density_safety_);
     ar("timestep margin", s.timestep_margin_);
     ar("timestep hold", s.hold_);
@@ -681,6 +706,7 @@ class Simulation {
   bool energy_reference_pending_ = true;
   double retired_slip_ = 0, retired_viscous_ = 0;  // J, dissipated at CPs that no longer exist
   double contact_update_ = 0;  // J, energy stored in the contacts that re-detection added (redetect_and_update)
+  double last_move_dt_ = 0;    // s, the timestep of the last step's move (0: none yet)
 };
 
 }  // namespace blockdem
