@@ -474,24 +474,24 @@ std::string first_not_finite(const S& sim) {
   return {};
 }
 
-/// The balance must close within this fraction of its largest term (EnergyReport::balance_error). The existing
-/// energy tests close to 1e-3 for smooth motion (tests/integrate/test_simulation.cpp), 2e-3 with an impact found by
-/// re-detection, 5e-3 with friction and base motion or a deformable block with Maxwell branches, 1e-2 for a
-/// density-scaled deformable model (tests/kinematics/test_deformable.cpp), and 2 % for a block that slides while it
-/// bounces at the default timestep (tests/integrate/test_friction_rocking.cpp). What the balance does not close is
-/// the scheme's, first order in the timestep: a joint that opens or closes within a step (the leapfrog's energy
-/// changes by 1/2 k_n A times the gap before and the overlap after), and the force that a re-detection changes, which
-/// acts over the half step before it (test_simulation.cpp). Rigid blocks rock, hop and land on their joints, the
-/// density-scaled ones at up to three times the default timestep: rows 27, 39 and 42 close to 6.3, 8.4 and 5.9 %,
-/// and to 2.0, 4.0 and 3.5 % at half that timestep (row 27: 0.17 % at a quarter); hence 10 %. Deformable blocks
-/// meet their supports node by node, with the nodes' small masses: 0.7 % at most in 223 runs of this generator with
-/// other seeds (mixed models: 3 % in all but one of 223), hence 2 % and 5 %. 11 of those 223 rigid runs exceed 10 %,
-/// all with ties or density scaling; the four looked at close within 7 % at half the timestep. The bookkeeping errors this test found were 2 % to several times
+/// The balance must close within this fraction of its largest term (EnergyReport::balance_error). The scheme
+/// conserves its energy exactly for linear springs at any timestep, and every joint law books what it dissipates as
+/// the scheme's own work on its springs (the trapezoid of the stresses at both samples) less their stored energy,
+/// a normal spring whose path bends within a step (a joint that opens, closes, breaks, cracks or crushes) corrected
+/// by the closure impulse (docs/energy.md). What is left: the timestep hold's mass raises at the velocities of the
+/// moment, impacts found late (a block that moves past the contact tolerance between two detections, at up to three
+/// times the default timestep under density scaling) and elastic contact points that come and go at the tolerance.
+/// Of 833 rigid models of this generator with other seeds (BLOCKDEM_FUZZ_SEEDS=1000, docs/energy.md), the dynamic
+/// run closes to 2e-6 in the median, 2.7 % at the 99th percentile, 19 above 1 % and 4 above 10 %; all those above
+/// 1 % have a block dropped, ties or density scaling, and the four above 10 % all three, or 276 detections in 300
+/// steps. The fixed rows below close within 2.5 % (row 12, Rayleigh), hence 5 %. Deformable blocks meet their
+/// supports node by node, with the nodes' small masses: 0.7 % at most in 223 runs with other seeds (mixed models:
+/// 3 % in all but one of 223), hence 2 % and 5 %. The bookkeeping errors this test found were 2 % to several times
 /// the energy (a run's first step, the base's work, the ties' energy, Mohr-Coulomb's tension failure; regression
 /// tests at the end of this file). Local damping's own boundary term is added (local_damping_boundary).
 double balance_tolerance(Kinematics k) {
   switch (k) {
-    case Kinematics::rigid: return 0.1;
+    case Kinematics::rigid: return 0.05;
     case Kinematics::mixed: return 0.05;
     default: return 0.02;
   }
@@ -500,7 +500,8 @@ constexpr double local_balance_tolerance = 0.1;
 
 struct Outcome {
   std::string text;
-  double balance_error = 0;
+  double balance_error = 0;          // the worst of the runs (settling under local damping and the dynamic run)
+  double dynamic_balance_error = 0;  // the dynamic run's
   bool stopped = false;
   double start_boundary = 0;  // J, local damping's boundary term after the first step of the last run()
 };
@@ -557,6 +558,9 @@ void check_state(const S& sim, const std::string& phase, double tolerance, Outco
     << sim.detections() << " detections; energy kinetic " << e.kinetic << ", elastic " << e.elastic << ", gravity work "
     << e.gravity_work << ", base work " << e.base_work << ", viscous " << e.viscous << ", slip " << e.slip
     << ", contact update " << e.contact_update << " J, balance error " << e.balance_error;
+  const TimestepHold& hold = sim.timestep_hold();
+  if (hold.reductions > 0) t << "; timestep lowered " << hold.reductions << " times, to " << hold.smallest_dt << " s at least";
+  if (hold.raises > 0) t << "; masses raised " << hold.raises << " times (+" << hold.added_mass << " kg, +" << hold.kinetic_energy << " J)";
   out.text += (out.text.empty() ? "" : "\n  ") + t.str();
   INFO(t.str());
   const double scale = std::max({std::abs(e.gravity_work) + std::abs(e.base_work), e.kinetic + e.elastic + e.viscous + e.slip, 1e-12});
@@ -808,6 +812,7 @@ void dynamic_run(S& sim, const Row& row, Built& s, Rng& rng, Outcome& out) {
   CHECK(sim.steps() >= dynamic_steps);
   constexpr bool local = std::is_same_v<std::remove_cvref_t<decltype(sim.damping())>, damping::Local>;
   check_state(sim, "dynamic run", local ? local_balance_tolerance : balance_tolerance(row.kinematics), out);
+  out.dynamic_balance_error = sim.energy().balance_error;
 }
 
 /// The model under `policy`; for a viscous or undamped policy, now and then settled first under local damping (with
@@ -891,7 +896,7 @@ TEST_CASE("model fuzz: random models build or refuse bad input, stay finite and 
   const int only = environment_integer("BLOCKDEM_FUZZ_ONLY", 0, std::numeric_limits<int>::max(), -1);
   const int seeds = environment_integer("BLOCKDEM_FUZZ_SEEDS", 1, 1000000, 0);
   const auto all = seeds > 0 ? seeded_rows(seeds) : rows();
-  std::vector<double> balances;  // of the rigid models without local damping (their own tolerance)
+  std::vector<double> balances;  // of the dynamic runs of the rigid models without local damping (their own tolerance)
   const auto start = std::chrono::steady_clock::now();
   int models = 0;
   double worst = 0;
@@ -923,7 +928,7 @@ TEST_CASE("model fuzz: random models build or refuse bad input, stay finite and 
       FAIL_CHECK("unexpected exception: " << std::string(e.what()) << "\n  " << out.text);
     }
     worst = std::max(worst, out.balance_error);
-    if (row.kinematics == Kinematics::rigid && row.policy != Policy::local) balances.push_back(out.balance_error);
+    if (row.kinematics == Kinematics::rigid && row.policy != Policy::local) balances.push_back(out.dynamic_balance_error);
     ++models;
     ++cells[std::string(name(row.kinematics)) + " " + name(row.policy) + (row.density_scaling ? " S" : " -") +
             (row.ties ? "T" : "-") + (row.base_motion ? "B" : "-")];
@@ -931,11 +936,11 @@ TEST_CASE("model fuzz: random models build or refuse bad input, stay finite and 
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   MESSAGE(models << " random models (" << cells.size() << " distinct cells of kinematics x policy x scaling x ties x base motion) in "
                  << seconds << " s; worst energy balance error " << worst
-                 << " (tolerance 10 % rigid, 5 % mixed, 2 % deformable; under local damping 10 % and its boundary term)");
+                 << " (tolerance 5 % rigid and mixed, 2 % deformable; under local damping 10 % and its boundary term)");
   if (!balances.empty()) {
     std::sort(balances.begin(), balances.end());
     const auto at = [&](double q) { return balances[static_cast<std::size_t>(q * static_cast<double>(balances.size() - 1))]; };
-    MESSAGE(balances.size() << " rigid models without local damping: energy balance error median " << at(0.5) << ", 99th percentile "
+    MESSAGE(balances.size() << " rigid models without local damping, their dynamic runs: energy balance error median " << at(0.5) << ", 99th percentile "
                             << at(0.99) << ", worst " << balances.back() << "; "
                             << std::count_if(balances.begin(), balances.end(), [](double b) { return b > 0.01; }) << " above 1 %");
   }
