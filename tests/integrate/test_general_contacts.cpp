@@ -358,9 +358,10 @@ TEST_CASE("general contacts: at a timestep that resolves the impact, the stocky 
 TEST_CASE("general contacts: at the default timestep the stocky block's undamped landing gives back what the ODE "
           "does (KNOWN TO FAIL: issue 42)" * doctest::should_fail()) {
   // At the default timestep (8.6e-4 s, 0.8 of the bound) the landing edge's springs are resolved by about two steps
-  // and give back more energy than they took: restitution 0.331 against the reference's 0.183 (0.2085 at half the
-  // timestep, 0.188 at a quarter). The rocking before it is right (0.518505 against 0.518606 rad). When impacts stop
-  // making energy this test passes, and doctest reports that as a failure: then drop should_fail.
+  // and the landing keeps too much of its rotation: restitution 0.843 against the reference's 0.183 (0.331 before the
+  // closure impulse; docs/rocking_block.md: 0.190 at half the timestep on the program's pulse). The rocking before it
+  // is right (0.518431 against 0.518606 rad). When the default timestep resolves the landing this test passes, and
+  // doctest reports that as a failure: then drop should_fail.
   check_against_reference(1.0, 0.05);
 }
 
