@@ -48,8 +48,9 @@ struct RockingOptions : DeformableOptions {
   double restitution_rotation = 0.01;  // rad: the impact's velocities are measured where the rotation passes this
   double record_interval = 1e-3;  // s
   /// Of the default timestep (0.8 of the critical one, eq. 1, with the damping's factor, eq. 11). At the default an
-  /// impact on the block's edge is resolved by about two steps and the undamped springs give back more than they
-  /// took (restitution 0.331 where the converged value is 0.184: docs/rocking_block.md); 0.03 converges.
+  /// impact on the block's edge is resolved by about two steps and the undamped landing keeps far too much of its
+  /// rotation (restitution 0.769 where the converged value is 0.184; 0.190 at 0.5: docs/rocking_block.md); 0.03
+  /// converges.
   double timestep_factor = 1.0;
 
   void validate() const {
