@@ -165,4 +165,12 @@ static_assert(sizeof(ClosureImpulse) == 6 && alignof(ClosureImpulse) == 2);
 /// and after, measured from the kink; k0, k1 the stiffness (Pa/m) on their sides.
 constexpr double kink_error(double y0, double y1, double k0, double k1) noexcept { return 0.5 * y0 * y1 * (k1 - k0); }
 
+/// The same for any step whose path bent (a kink crossed, a bond broken, a joint cracked or crushed): the scheme's
+/// work on the normal spring, the trapezoid of its stresses sigma0, sigma1 (Pa, compression positive) over the gap's
+/// change du (m), against the change of its stored energy u1 - u0 and what the law booked as dissipated (J/m^2).
+/// Across a kink of a piecewise-linear spring it is kink_error.
+constexpr double path_error(double sigma0, double sigma1, double du, double u0, double u1, double booked) noexcept {
+  return 0.5 * (sigma0 + sigma1) * du + u1 - u0 + booked;
+}
+
 }  // namespace blockdem::contact

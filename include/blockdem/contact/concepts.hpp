@@ -17,6 +17,17 @@ using Shear = std::array<double, 2>;
 /// The traction on B at a contact point in its frame, Pa: normal (compression positive), t1, t2.
 using Traction = std::array<double, 3>;
 
+/// What a joint's shear springs dissipate over a step in which their stresses went from `before` to `after` (Pa)
+/// under the shear increment `du` (m; the stresses are the traction on B, so the work done on the springs is
+/// -(before + after)/2 . du, the trapezoid, the scheme's own measure of work) less what they store more (J/m^2). Exact
+/// for any path that ends where the return put it, slip or release.
+constexpr double shear_dissipation(const Shear& before, const Shear& after, const Shear& du, double shear_stiffness) noexcept {
+  const double work = -0.5 * ((before[0] + after[0]) * du[0] + (before[1] + after[1]) * du[1]);
+  const double stored_change =
+      0.5 * (after[0] * after[0] + after[1] * after[1] - before[0] * before[0] - before[1] * before[1]) / shear_stiffness;
+  return work - stored_change;
+}
+
 /// What a law returns for one step of one contact point. Sign conventions: the normal n points from block A to
 /// block B; the gap is positive when the joint is open; `normal_stress` is positive in compression; `shear_stress`
 /// is the traction A exerts on B along t1, t2. The traction on B is normal_stress n + shear_stress_1 t1 + ..., on A

@@ -81,13 +81,9 @@ struct Elastic {
     const double gap = h.gap;
     const double sigma = gap > 0.0 ? 0.0 : -p.normal_stiffness * gap;
     double dissipated = 0.0;
-    if (gap > 0.0) {
-      // Open: the shear springs let go. The work done on them over the step, -(tau_old + 0) / 2 . du, less what they
-      // store more (-their old energy), as Mohr-Coulomb books slip.
-      const double work = -0.5 * (h.shear[0] * du_shear[0] + h.shear[1] * du_shear[1]);
-      const double stored_change = -0.5 * (h.shear[0] * h.shear[0] + h.shear[1] * h.shear[1]) / p.shear_stiffness;
-      dissipated = work - stored_change;
+    if (gap > 0.0) {  // open: the shear springs let go, booked as Mohr-Coulomb books slip
       tau = {0.0, 0.0};
+      dissipated = shear_dissipation(h.shear, tau, du_shear, p.shear_stiffness);
     }
     double kink_crossing = 0.0;  // J/m^2, the trapezoid error of a step across the kink at gap 0
     if ((gap_before > 0.0) != (gap > 0.0)) [[unlikely]]

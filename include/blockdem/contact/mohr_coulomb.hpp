@@ -91,9 +91,9 @@ struct MohrCoulomb {
     // stored energy and what was booked: the step's error (J/m^2, + made), which the closure impulse removes where
     // it is energy made, and books. Across the kink it is 1/2 y0 y1 (k1 - k0), y the gap from the kink; where the
     // bond breaks, the drop at the failure gap against the trapezoid across the step.
-    const double kink_crossing = bent ? 0.5 * (normal_before + sigma) * du_normal + normal_energy(p, sigma, h.gap) -
-                                            normal_energy(p, normal_before, gap_before) + dissipated
-                                      : 0.0;
+    const double kink_crossing =
+        bent ? path_error(normal_before, sigma, du_normal, normal_energy(p, normal_before, gap_before), normal_energy(p, sigma, h.gap), dissipated)
+             : 0.0;
     const double correction = h.impulse.step(kink_crossing, du_normal, sigma, p.normal_stiffness, step, dissipated);
     Shear tau{h.shear[0] - p.shear_stiffness * du_shear[0], h.shear[1] - p.shear_stiffness * du_shear[1]};
     // Comparisons, not std::fmax: GCC calls libm for fmax (its NaN rules), one call per CP-step in the hot loop.
@@ -106,13 +106,10 @@ struct MohrCoulomb {
       const double magnitude = std::sqrt(magnitude2);
       const double scale = limit / magnitude;
       tau = {tau[0] * scale, tau[1] * scale};
-      // The work done on the shear springs over the step, -(tau_old + tau_new) / 2 . du, less what they store more:
-      // the same measure as the energy report's. (Limit times the plastic slip is that only at a constant limit: as
-      // the normal stress changed, a block that bounced while sliding was credited with slip it never dissipated.)
-      const double work = -0.5 * ((h.shear[0] + tau[0]) * du_shear[0] + (h.shear[1] + tau[1]) * du_shear[1]);
-      const double stored_change = 0.5 * (tau[0] * tau[0] + tau[1] * tau[1] - h.shear[0] * h.shear[0] - h.shear[1] * h.shear[1]) /
-                                   p.shear_stiffness;
-      dissipated += work - stored_change;
+      // The scheme's work on the shear springs less what they store more (shear_dissipation). Limit times the
+      // plastic slip is that only at a constant limit: as the normal stress changed, a block that bounced while
+      // sliding was credited with slip it never dissipated.
+      dissipated += shear_dissipation(h.shear, tau, du_shear, p.shear_stiffness);
       if (p.cohesion > 0 || p.tensile_strength > 0) failed = true;
     }
     h.shear = tau;

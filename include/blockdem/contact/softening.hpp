@@ -399,14 +399,9 @@ struct ElastoSoftening {
     // displacement control (no time passes: the joint test) the envelopes' integrals are booked, independent of the
     // step size.
     const double dissipated_normal = dissipated;
-    if (step.dt > 0.0) {
-      const double shear_work = -0.5 * ((shear_before[0] + tau[0]) * du_shear[0] + (shear_before[1] + tau[1]) * du_shear[1]);
-      dissipated += shear_work - 0.5 * (tau[0] * tau[0] + tau[1] * tau[1] - old2) / ks;
-    } else {
-      dissipated += shear_dissipated;
-    }
+    dissipated += step.dt > 0.0 ? shear_dissipation(shear_before, tau, du_shear, ks) : shear_dissipated;
     const double trapezoid_error =
-        normal_bent ? 0.5 * (sigma_before + sigma) * du_normal + normal_energy(p, h) - normal_energy_before + dissipated_normal : 0.0;
+        normal_bent ? path_error(sigma_before, sigma, du_normal, normal_energy_before, normal_energy(p, h), dissipated_normal) : 0.0;
     const double correction = h.impulse.step(trapezoid_error, du_normal, sigma, kn, step, dissipated);
 
     if (intact < intact0) h.damage = std::max(h.damage, std::min(1.0, 1.0 - intact));
