@@ -8,6 +8,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_arch {
+
 TEST_CASE("arch: below the minimum thickness t/R = 0.1075 it collapses under its own weight, above it stands") {
   analysis::ArchOptions o;
   o.voussoirs = 40;
@@ -68,3 +71,5 @@ TEST_CASE("arch: beyond its collapse multiplier the 40-voussoir arch collapses c
   CHECK(r.voussoirs_on_floor >= 10);
   CHECK(r.max_penetration < 0.05 * o.thickness_ratio * o.radius);
 }
+
+}  // namespace test_arch

@@ -20,6 +20,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_error_metrics {
+
 namespace {
 
 std::string write_temp(const std::string& name, const std::string& text) {
@@ -123,7 +126,7 @@ TEST_CASE("error metrics: acceleration extremes (eq. 29) and RE_max, RE_min (eq.
   CHECK_THROWS_AS(analysis::extremes(std::span<const double>{}), InvalidArgument);
 }
 
-TEST_CASE("error metrics: linear resampling reproduces a linear function exactly; times outside the span throw") {
+TEST_CASE("error metrics: linear resampling reproduces a linear function exactly, times outside the span throw") {
   const std::vector<double> t_from{0.0, 0.1, 0.25, 0.3, 0.7, 1.0};  // s, non-uniform
   std::vector<double> u_from;
   for (const double t : t_from) u_from.push_back(3.0 - 2.0 * t);
@@ -154,7 +157,7 @@ TEST_CASE("error metrics: zero_at_first_sample subtracts the first value from al
   CHECK(u[3] == test::approx(-0.005));
 }
 
-TEST_CASE("error metrics: a CSV table with comments, blanks and CRLF reads column-major; a missing column is named") {
+TEST_CASE("error metrics: a CSV table with comments, blanks and CRLF reads column-major, a missing column is named") {
   const auto path = write_temp("good.csv",
                                "# exported by the shake-table DAQ\r\n"
                                "time_s, OC1_uy ,ACC18_ay\r\n"
@@ -311,3 +314,5 @@ TEST_CASE("error metrics: the mean RMSD error (eq. 27-28) is the error of the me
   CHECK(analysis::mean_rmsd_error_percent(r, "_uy", two) == test::approx(100 * (5.5 - 1.0) / 1.0));
   CHECK_THROWS_WITH_AS(analysis::mean_rmsd_error_percent(r, "_ux"), doctest::Contains("no channel 'OC2_ux'"), InvalidArgument);
 }
+
+}  // namespace test_error_metrics

@@ -8,6 +8,9 @@
 #include "blockdem/analysis/joint_test.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_joint_test {
 using analysis::JointPath;
 
 TEST_CASE("joint test: the closure for a normal stress inverts the elastic line and the hardening parabola") {
@@ -43,3 +46,5 @@ TEST_CASE("joint test: each path reaches its analytical peak (f_t, c + sigma tan
   CHECK_THROWS_WITH_AS(analysis::joint_path_from_string("bending"), doctest::Contains("is not one of tension, shear"),
                        InvalidArgument);
 }
+
+}  // namespace test_joint_test

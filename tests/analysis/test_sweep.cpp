@@ -9,6 +9,9 @@
 #include "blockdem/analysis/sweep.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_sweep {
 using namespace blockdem::analysis;
 
 namespace {
@@ -48,7 +51,7 @@ TEST_CASE("sweep: the paper's sensitivity sweep (Table 3) expands to its 16 anal
   CHECK(cases[13].options.upper_hz == 40);
 }
 
-TEST_CASE("sweep: an IDA is a case per record and level, each from the undamaged vault; ids do not depend on the grid") {
+TEST_CASE("sweep: an IDA is a case per record and level, each from the undamaged vault, ids do not depend on the grid") {
   SweepSpec spec;
   spec.records = {"data/RSN1_EW.AT2", "/abs/path/ESM_IT.AQA..HNE.txt", ""};
   spec.schemes = {SweepScheme{DampingScheme::none, {}, {}, {}, {}}};
@@ -126,3 +129,5 @@ TEST_CASE("sweep: a bad grid is refused with the field and its range named") {
   spec.schemes.push_back(SweepScheme{DampingScheme::none, {0.02}, {}, {}, {}});
   CHECK(message(spec).find("none: takes no damping ratio") != std::string::npos);
 }
+
+}  // namespace test_sweep

@@ -12,6 +12,9 @@
 #include "blockdem/analysis/sweep_file.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_sweep_file {
 using namespace blockdem::analysis;
 
 namespace {
@@ -158,3 +161,5 @@ TEST_CASE("sweep file: value ranges are left to expand_sweep") {
   CHECK(spec.schemes[0].zetas == std::vector<double>{0.7});
   CHECK_THROWS_AS(expand_sweep(spec, VaultStudyOptions{}), InvalidArgument);
 }
+
+}  // namespace test_sweep_file

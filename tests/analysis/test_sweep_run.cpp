@@ -18,6 +18,9 @@
 #include "../threads.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_sweep_run {
 using namespace blockdem::analysis;
 
 namespace {
@@ -49,7 +52,7 @@ std::filesystem::path fresh_folder(const char* name) {
 
 }  // namespace
 
-TEST_CASE("sweep run: cases that fail are recorded, the others complete; a second run skips the finished ones") {
+TEST_CASE("sweep run: cases that fail are recorded, the others complete, a second run skips the finished ones") {
   const test::OneThread one_thread;
   const auto dir = fresh_folder("blockdem_sweep_run");
   SweepSpec spec;
@@ -112,7 +115,7 @@ TEST_CASE("sweep run: cases that fail are recorded, the others complete; a secon
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("sweep run: with measured channels, a row holds the biases of compare_tables; against itself they are 0") {
+TEST_CASE("sweep run: with measured channels, a row holds the biases of compare_tables, against itself they are 0") {
   const test::OneThread one_thread;
   const auto dir = fresh_folder("blockdem_sweep_measured");
   SweepSpec spec;
@@ -160,7 +163,7 @@ TEST_CASE("sweep run: with measured channels, a row holds the biases of compare_
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("sweep run: a fault that is not the case's input fails the row as an internal error; a metric that cannot be computed says why") {
+TEST_CASE("sweep run: a fault that is not the case's input fails the row as an internal error, a metric that cannot be computed says why") {
   const test::OneThread one_thread;
   const auto dir = fresh_folder("blockdem_sweep_internal");
   SweepSpec spec;
@@ -317,3 +320,5 @@ TEST_CASE("sweep run: a row travels between processes unchanged") {
   CHECK(back.wall_seconds == r.wall_seconds);
   CHECK(analysis::detail::csv_text("a,\"b\"") == "\"a,\"\"b\"\"\"");
 }
+
+}  // namespace test_sweep_run

@@ -15,6 +15,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_vault_checkpoint {
+
 namespace {
 
 using test::OneThread;
@@ -141,3 +144,5 @@ TEST_CASE("vault study: a truncated, corrupted or foreign checkpoint is refused,
   CHECK_FALSE(r.interrupted);
   std::filesystem::remove_all(base);
 }
+
+}  // namespace test_vault_checkpoint

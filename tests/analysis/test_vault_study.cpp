@@ -20,6 +20,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_vault_study {
+
 namespace {
 
 using test::OneThread;
@@ -371,3 +374,5 @@ TEST_CASE("vault study: run on past the paper's levels with general contacts, th
   CHECK(resumed.levels.size() == 2);
   CHECK(resumed.levels.back().collapse.collapsed);
 }
+
+}  // namespace test_vault_study

@@ -17,6 +17,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_law_concepts {
+
 namespace {
 
 // ---- compile time: positive and negative ----
@@ -238,3 +241,5 @@ TEST_CASE("elastic law: a never-bonded point carries no tension, and lets its sh
   CHECK(r.normal_stress == test::approx(-2e6).epsilon(1e-12));
   CHECK(r.damping_active);
 }
+
+}  // namespace test_law_concepts

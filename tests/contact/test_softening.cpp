@@ -21,6 +21,9 @@
 #include "../integrate/fixtures.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_softening {
 using contact::ElastoSoftening;
 using Parameters = ElastoSoftening::Parameters;
 using History = ElastoSoftening::History;
@@ -589,3 +592,5 @@ TEST_CASE("softening: the inline elastic step equals the full step wherever it i
   CHECK(fast > compared / 10);
   CHECK(fast < compared);
 }
+
+}  // namespace test_softening

@@ -20,6 +20,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_traction {
+
 namespace {
 
 constexpr double degree = pi / 180.0;
@@ -163,3 +166,5 @@ TEST_CASE_TEMPLATE_DEFINE("every damping policy: the viscous stress its spring s
   else CHECK(nonzero == 0);  // no springs: no viscous stress at a CP
 }
 TEST_CASE_TEMPLATE_APPLY(held_policy_case, damping::ShippedPolicies);
+
+}  // namespace test_traction

@@ -10,6 +10,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_constexpr_math {
+
 namespace {
 double relative_error(double a, double b) { return std::abs(a - b) / std::abs(b); }
 }  // namespace
@@ -52,3 +55,5 @@ TEST_CASE("constexpr math: the functions are usable in constant expressions") {
   static_assert(cmath::abs(cmath::softplus(0.0) - 0.6931471805599453) < 1e-15);
   CHECK(cmath::exp(1.0) == test::approx(std::exp(1.0)));
 }
+
+}  // namespace test_constexpr_math

@@ -9,6 +9,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_rotation {
+
 TEST_CASE("rotation: turned() equals exp(w dt / 2) q from Eigen's angle-axis, for small and large angles") {
   const Quaternion q = Quaternion(Eigen::AngleAxisd(0.7, Vec3(1, -2, 0.5).normalized()));
   const Vec3 axis = Vec3(-0.3, 0.8, 0.2).normalized();
@@ -32,3 +35,5 @@ TEST_CASE("rotation: small_angle_between() is the angle to third order (plus rou
     CHECK(std::abs(small_angle_between(q, q0) - angle) < angle * angle * angle + 1e-15);
   }
 }
+
+}  // namespace test_rotation

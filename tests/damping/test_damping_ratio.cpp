@@ -13,6 +13,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_damping_ratio {
+
 TEST_CASE("mass-proportional: zeta* at the centre frequency, falling as 1/f (the paper's MassProp, 4 % at 7.5 Hz)") {
   const auto mass = damping::MassProportional::from_damping_ratio(0.04, 7.5);
   CHECK(mass.alpha == test::approx(2.0 * 0.04 * two_pi * 7.5));
@@ -31,7 +34,7 @@ TEST_CASE("stiffness-proportional: zeta = beta omega / 2 and the eq. 11 timestep
   CHECK(stiff.timestep_factor(0.0) == 1.0);
 }
 
-TEST_CASE("rayleigh: passes through both anchor points; minimum sqrt(alpha beta) at sqrt(alpha / beta) (eq. 10)") {
+TEST_CASE("rayleigh: passes through both anchor points, minimum sqrt(alpha beta) at sqrt(alpha / beta) (eq. 10)") {
   const auto r = damping::Rayleigh::from_two_frequencies(0.05, 1.0, 0.05, 40.0);
   CHECK(r.damping_ratio(angular_frequency(1.0)) == test::approx(0.05).epsilon(1e-14));
   CHECK(r.damping_ratio(angular_frequency(40.0)) == test::approx(0.05).epsilon(1e-14));
@@ -45,3 +48,5 @@ TEST_CASE("rayleigh: passes through both anchor points; minimum sqrt(alpha beta)
   CHECK_THROWS_AS(damping::Rayleigh::from_two_frequencies(0.05, 0.0, 0.05, 1.0), InvalidArgument);
   CHECK_THROWS_AS(damping::Rayleigh::from_two_frequencies(-0.01, 1.0, 0.05, 2.0), InvalidArgument);
 }
+
+}  // namespace test_damping_ratio

@@ -15,6 +15,9 @@
 #include "blockdem/damping/maxwell.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_maxwell {
 using damping::MaxwellBranch;
 
 TEST_CASE("maxwell: single-branch closed forms (eq. 16-18) agree with the general evaluator (eq. 19)") {
@@ -275,3 +278,5 @@ TEST_CASE("maxwell: element_stress_tile (elements across lanes) equals element_s
       for (std::size_t c = 0; c < 6; ++c) CHECK(tile.stress[c][i][l] == test::approx(single[l][i][c]).epsilon(1e-13).scale(1.0));
   CHECK(m.element_stored_energy(single[0], 5e9 / 2.4, 5e9 / 2.4) > 0);
 }
+
+}  // namespace test_maxwell

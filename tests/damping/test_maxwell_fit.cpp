@@ -12,6 +12,9 @@
 #include "blockdem/damping/maxwell_fit.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_maxwell_fit {
 using damping::MaxwellFitOptions;
 using damping::OrderingMap;
 
@@ -88,7 +91,7 @@ TEST_CASE("maxwell fit: the literal eq. 23-24 map does measurably worse from the
   }
 }
 
-TEST_CASE("maxwell fit: more branches flatten the curve; the smallest N meeting a tolerance is chosen") {
+TEST_CASE("maxwell fit: more branches flatten the curve, the smallest N meeting a tolerance is chosen") {
   auto options = paper_fig10();
   options.branches = 4;
   const auto four = damping::fit_maxwell(options);
@@ -178,3 +181,5 @@ TEST_CASE("maxwell fit: bad options name the field and its range") {
   }
   CHECK_THROWS_AS(damping::fit_maxwell_to_tolerance(paper_fig10(), 0.0), InvalidArgument);
 }
+
+}  // namespace test_maxwell_fit

@@ -14,6 +14,9 @@
 #include "blockdem/damping/policies.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_policy_concepts {
 using namespace blockdem::damping;
 
 namespace {
@@ -171,3 +174,5 @@ static_assert(!SpringTripleDamping<TripleOfFloats> && PerSpringDamping<TripleOfF
 }  // namespace
 
 TEST_CASE("static: the damping capability concepts accept and reject what they should (checked at compile time)") { CHECK(true); }
+
+}  // namespace test_policy_concepts

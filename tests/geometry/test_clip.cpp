@@ -13,6 +13,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_clip {
+
 namespace {
 geometry::ConvexPolyhedron unit_cube() { return geometry::make_box(Vec3(0, 0, 0), Vec3(1, 1, 1)); }
 }  // namespace
@@ -74,7 +77,7 @@ TEST_CASE("distance: zero inside and on the surface, Euclidean outside (face, ed
   CHECK(geometry::distance(cube, Vec3(-0.2, -0.3, 1.6)) == test::approx(std::sqrt(0.49)));  // corner
 }
 
-TEST_CASE("separation: face axes for boxes; edge-edge axes for two crossed edges that face normals cannot separate") {
+TEST_CASE("separation: face axes for boxes, edge-edge axes for two crossed edges that face normals cannot separate") {
   const auto a = unit_cube();
   CHECK(geometry::separation(a, geometry::make_box(Vec3(1.1, 0, 0), Vec3(2, 1, 1))) == test::approx(0.1));
   CHECK(geometry::separation(a, geometry::make_box(Vec3(0.95, 0.2, 0.2), Vec3(2, 1, 1))) == test::approx(-0.05));
@@ -89,3 +92,5 @@ TEST_CASE("separation: face axes for boxes; edge-edge axes for two crossed edges
   const auto touching = centred.transformed(Eigen::AngleAxisd(pi / 4, Vec3::UnitX()).toRotationMatrix(), Vec3(0, 0, 2 * r - g));
   CHECK(geometry::separation(turned_a, touching) == test::approx(-g).epsilon(1e-9));
 }
+
+}  // namespace test_clip

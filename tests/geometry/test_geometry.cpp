@@ -12,6 +12,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_geometry {
+
 TEST_CASE("geometry: mass properties of a box and a tetrahedron (closed forms)") {
   const auto box = geometry::make_box(Vec3(1, 2, 3), Vec3(3, 3, 6));  // 2 x 1 x 3
   const auto m = geometry::mass_properties(box);
@@ -80,3 +83,5 @@ TEST_CASE("geometry: the arch and wall generators give valid blocks of the right
   CHECK(units == 3 * 5 + 3 * 6);  // odd courses: two halves and 4 whole units
   CHECK(wall == test::approx(6 * 5 * 0.24 * 0.12 * 0.055).epsilon(1e-12));
 }
+
+}  // namespace test_geometry

@@ -17,6 +17,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_contact_history {
+
 namespace {
 
 /// A bonded joint: tension 0.1 MPa, cohesion 0.2 MPa, 30 degrees.
@@ -126,3 +129,5 @@ TEST_CASE("contact history: a block rattling on a pier of its own size keeps its
   CHECK(std::abs(e.contact_update) < 1e-2 * motion);  // 35 times the motion's energy with the crossing vertices
   CHECK(e.balance_error < 1e-3);  // 8.9 with them
 }
+
+}  // namespace test_contact_history

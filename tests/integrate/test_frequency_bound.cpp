@@ -21,6 +21,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_frequency_bound {
+
 namespace {
 
 using Sim = Simulation<damping::None, contact::Elastic>;
@@ -278,3 +281,5 @@ TEST_CASE("timestep: partial density scaling of nodes by the bound reaches the t
   sim.set_timestep(sim.critical_timestep(), TimestepCheck::unchecked);
   CHECK(node_growth(sim, 1e-3 * target, 4000) < 1e3);
 }
+
+}  // namespace test_frequency_bound

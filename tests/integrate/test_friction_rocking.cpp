@@ -17,6 +17,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_friction_rocking {
+
 namespace {
 using MC = contact::MohrCoulomb;
 constexpr double g = 9.81;
@@ -95,7 +98,7 @@ double tilt_under(double a, double b, double h, bool* settled) {
 }
 }  // namespace
 
-TEST_CASE("rocking: a slender block uplifts if and only if a > g tan(alpha) (Housner; rigid-block statics)") {
+TEST_CASE("rocking: a slender block uplifts if and only if a > g tan(alpha) (Housner, rigid-block statics)") {
   const double b = 0.2, h = 1.0;  // tan(alpha) = b / h = 0.2
   bool settled = false;
   const double below = tilt_under(0.98 * g * b / h, b, h, &settled);
@@ -128,3 +131,5 @@ TEST_CASE("friction: the energy balance closes for a block that slides while it 
   CHECK(e.slip < 1.6);
   CHECK(e.balance_error < 1e-9);
 }
+
+}  // namespace test_friction_rocking

@@ -24,6 +24,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_general_contacts {
+
 namespace {
 using MC = contact::MohrCoulomb;
 
@@ -71,7 +74,7 @@ MC::Parameters dry(double kn = 1e9, double phi_deg = 45) { return MC::Parameters
 }  // namespace
 
 TEST_CASE("general contacts: a cube on an edge, on a corner and edge across edge gets CPs on the edge, at the corner "
-          "and at the crossing; face-to-face detection finds none") {
+          "and at the crossing, where face-to-face detection finds none") {
   model::ContactSettings general, faces;
   faces.kinds = model::ContactKinds::faces;
   {
@@ -148,7 +151,7 @@ TEST_CASE("general contacts: blocks that touch along a line where four joints me
 }
 
 TEST_CASE("general contacts: blocks that meet edge to edge with a third block between them, face to face with "
-          "both, get no CPs; without it, or an edge on a face, they do") {
+          "both, get no CPs (without it, or an edge on a face, they do)") {
   // Three wedges around the y axis in the x-z plane, as blocks of neighbouring webs meet at a vault's crown line: A
   // from 90 to 135 deg, C from 45 to 90 deg, B from 0 to 45 deg. A and B touch along the axis only, an edge of each,
   // with no face-to-face plane between them (A's face on x = 0 meets B's diagonal face at 45 deg); C fills the wedge
@@ -366,7 +369,7 @@ TEST_CASE("general contacts: at the default timestep the stocky block's undamped
 }
 
 TEST_CASE("general contacts: a block turned past 20 degrees on its edge keeps its edge's contact points and their "
-          "histories (face-face to edge-face); face-to-face detection loses them") {
+          "histories (face-face to edge-face), which face-to-face detection loses") {
   for (const auto kinds : {model::ContactKinds::general, model::ContactKinds::faces}) {
     CAPTURE(static_cast<int>(kinds));
     model::Model m;
@@ -414,3 +417,5 @@ TEST_CASE("general contacts: a block turned past 20 degrees on its edge keeps it
     }
   }
 }
+
+}  // namespace test_general_contacts

@@ -20,6 +20,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_impact_energy {
+
 namespace {
 
 /// One mass on one spring that acts in compression only (a contact point hit at speed 1), by the central
@@ -55,7 +58,7 @@ Bounce1D bounce_1d(double omega_dt, double mass_over_mu, double phase) {
 
 }  // namespace
 
-TEST_CASE("closure impulse: one contact point alone gives back its impact speed exactly; heavier, never more") {
+TEST_CASE("closure impulse: one contact point alone gives back its impact speed exactly and, heavier, never more") {
   // Without the correction, at omega dt = 1.6 the same impact gives back 0.64 to 1.56 times its speed as the
   // instant of touch falls within the step (checked: the 1.5 is there without it).
   for (const double omega_dt : {1.6, 1.0, 0.4}) {
@@ -157,3 +160,5 @@ TEST_CASE("impact: a block dropped on a joint without damping never bounces high
     CHECK(worst_balance < 1e-7);
   }
 }
+
+}  // namespace test_impact_energy

@@ -41,6 +41,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_model_fuzz {
+
 namespace {
 
 using Elastic = contact::Elastic;
@@ -1089,3 +1092,5 @@ TEST_CASE("energy: a softening joint that cracks and slips in a dynamic run clos
   CHECK(e.slip > 1.0);   // J: at least the tension fracture energy of part of the 1 m^2 joint
   CHECK(worst < 1e-5);
 }
+
+}  // namespace test_model_fuzz

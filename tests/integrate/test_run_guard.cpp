@@ -14,6 +14,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_run_guard {
+
 namespace {
 
 using Sim = Simulation<damping::None, contact::MohrCoulomb>;
@@ -157,3 +160,5 @@ TEST_CASE("run guard: the overlap bound is checked") {
   CHECK_THROWS_WITH_AS(sim.set_run_guard(RunGuard{100, 16, 0}), doctest::Contains("max overlap must be in (0, 10]"),
                        InvalidArgument);
 }
+
+}  // namespace test_run_guard

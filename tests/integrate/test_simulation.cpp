@@ -24,6 +24,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_simulation {
+
 namespace {
 
 constexpr std::uint8_t vertical_only = model::Fixity::translation_x | model::Fixity::translation_y | model::Fixity::all_rotations;
@@ -875,3 +878,5 @@ TEST_CASE("static mass scaling: after restore_real_masses() a dynamic continuati
   const auto [t, z] = record_height(sim, s.block, 20 * 400);
   CHECK(test::measure_decay(t, z).frequency_hz == test::approx(f).epsilon(0.005));
 }
+
+}  // namespace test_simulation

@@ -12,6 +12,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_threads {
+
 namespace {
 std::vector<Vec3> run_wall(int courses, int units, int steps) {
   model::Model m;
@@ -36,3 +39,5 @@ TEST_CASE("threads: one and two threads give bitwise identical results") {
 TEST_CASE("threads: bitwise identical also when the block loops run in parallel (more than 1024 blocks)") {
   CHECK(test::differences_between_one_and_two_threads([] { return run_wall(22, 50, 100); }) == 0);
 }
+
+}  // namespace test_threads

@@ -18,6 +18,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_timestep_hold {
+
 namespace {
 
 using Sim = Simulation<damping::None, contact::MohrCoulomb>;
@@ -143,3 +146,5 @@ TEST_CASE("timestep hold: a density-scaled run keeps its timestep and raises the
   CHECK(bounce.finite);
   CHECK(bounce.largest_speed < 2 * bounce.impact_speed);
 }
+
+}  // namespace test_timestep_hold

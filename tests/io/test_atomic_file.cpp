@@ -18,6 +18,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_atomic_file {
+
 namespace {
 
 /// Files larger than `bytes` cannot be written while it lives (writes fail with EFBIG instead of raising SIGXFSZ).
@@ -119,3 +122,5 @@ TEST_CASE("atomic file: a folder that does not exist is named") {
   CHECK(message.find("cannot open '/nonexistent-dir/a.csv' for writing") != std::string::npos);
   CHECK(message.find("No such file or directory") != std::string::npos);
 }
+
+}  // namespace test_atomic_file

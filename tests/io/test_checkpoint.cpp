@@ -34,6 +34,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_checkpoint {
+
 namespace {
 
 std::string temporary_path(const std::string& name) {
@@ -426,7 +429,7 @@ TEST_CASE("checkpoint: a fresh simulation that does not load the checkpoint ends
   CHECK_FALSE(differences(a, b).empty());
 }
 
-TEST_CASE("checkpoint: writer and reader round trip values, vectors, nested vectors and strings; counts are bounded") {
+TEST_CASE("checkpoint: writer and reader round trip values, vectors, nested vectors and strings, counts are bounded") {
   std::stringstream buffer;
   io::CheckpointWriter w(buffer);
   const std::vector<std::vector<std::uint32_t>> nested{{1, 2, 3}, {}, {4}};
@@ -560,3 +563,5 @@ TEST_CASE("checkpoint: refusals name the file and the problem") {
   std::filesystem::remove(spoiled);
   std::filesystem::remove(path);
 }
+
+}  // namespace test_checkpoint

@@ -11,6 +11,9 @@
 #include "blockdem/io/json_reader.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_json_reader {
 using blockdem::io::JsonValue;
 
 namespace {
@@ -64,7 +67,7 @@ TEST_CASE("json reader: escapes, \\u and surrogate pairs to UTF-8") {
   CHECK(io::parse_json("\"caf\xC3\xA9\"").as_string() == "caf\xC3\xA9");  // raw UTF-8 passes through
 }
 
-TEST_CASE("json reader: values know their line and column; nesting to 256 levels is allowed") {
+TEST_CASE("json reader: values know their line and column, nesting to 256 levels is allowed") {
   const JsonValue v = io::parse_json("{\n  \"a\": [1,\n        {\"b\": \"x\"}]\n}", "sweep.json");
   CHECK(v.line() == 1);
   CHECK(v.column() == 1);
@@ -159,3 +162,5 @@ TEST_CASE("json reader: files are read and named in messages") {
   const std::string absent = (std::filesystem::temp_directory_path() / "blockdem_no_such.json").string();
   CHECK_THROWS_WITH_AS(io::read_json_file(absent), (absent + ": no such file").c_str(), InvalidArgument);
 }
+
+}  // namespace test_json_reader

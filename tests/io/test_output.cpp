@@ -23,6 +23,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_output {
+
 TEST_CASE("output: VTK blocks and contact points, histories and the run report") {
   auto s = test::block_on_base(1, 1, 1);
   s.model.gravity = Vec3::Zero();
@@ -59,3 +62,5 @@ TEST_CASE("output: VTK blocks and contact points, histories and the run report")
   history.write_csv((std::filesystem::temp_directory_path() / "blockdem_test_history.csv").string());
   CHECK(test::file_contents((std::filesystem::temp_directory_path() / "blockdem_test_history.csv").string()).rfind("time_s,top_ux,top_uy,top_uz,top_vx", 0) == 0);
 }
+
+}  // namespace test_output

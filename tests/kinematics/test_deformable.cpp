@@ -23,6 +23,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_deformable {
+
 static_assert(kinematics::Kinematics<kinematics::Rigid>);
 static_assert(kinematics::Kinematics<kinematics::Deformable>);
 static_assert(!kinematics::Kinematics<double>);
@@ -235,7 +238,7 @@ TEST_CASE("deformable twin: a stiff deformable block and its rigid twin slide an
   }
 }
 
-TEST_CASE("deformable density scaling: the target timestep is reached; the mass increase is the sum of the added masses") {
+TEST_CASE("deformable density scaling: the target timestep is reached, the mass increase is the sum of the added masses") {
   // Reference: paper Sect. 3.2 (dsf = m_scaled / m_real; only nodes whose own limit is below the target are scaled).
   model::Model m;
   m.add_block(geometry::make_box(Vec3(-1, -1, -0.5), Vec3(1, 1, 0)), 2000, "base", 0, model::Motion::fixed);
@@ -283,7 +286,7 @@ TEST_CASE("deformable density scaling: the target timestep is reached; the mass 
   CHECK(std::abs(sim.energy().balance_error) < 1e-2);
 }
 
-TEST_CASE("deformable static mass scaling: the same equilibrium as unscaled; restore gives back the real node masses") {
+TEST_CASE("deformable static mass scaling: the same equilibrium as unscaled, restore gives back the real node masses") {
   // Reference: the unscaled settle of the same model (statics do not depend on the masses; node weights stay real).
   // Unbalanced-force ratio 1e-5: 3440 steps unscaled, 3180 scaled: the slowest mode is the deformable block's
   // bouncing on its joint (whole-block mass on the joint stiffness, ~1/50 of the node frequencies), which node-by-node
@@ -409,7 +412,8 @@ TEST_CASE("deformable threads: Maxwell<3> element tiles over several chunks give
   CHECK(tetrahedra % State::element_tile != 0);
 }
 
-TEST_CASE("deformable truss: a block hanging from a tie stretches it by W L / (E A); the tie is in the timestep") {
+TEST_CASE("deformable truss: a block hanging from a tie stretches it by W L / (E A)") {
+  // The tie in the timestep bound: test_frequency_bound.cpp.
   // Reference: Hooke's law for an axial bar, delta = N L / (E A).
   model::Model m;
   const auto support = m.add_block(geometry::make_box(Vec3(-0.5, -0.5, 2), Vec3(0.5, 0.5, 2.2)), 2000, "support", 0, model::Motion::fixed);
@@ -422,14 +426,14 @@ TEST_CASE("deformable truss: a block hanging from a tie stretches it by W L / (E
   // Keep the block from swinging: only vertical motion.
   for (auto& f : m.deformable.nodes.fixity) f = 3;
   Simulation<damping::Local, contact::Elastic> sim(m, damping::Local{}, elastic_joint);
-  const double with_tie = sim.critical_timestep();
-  REQUIRE(sim.solve_to_equilibrium(1e-7, 400000));
+  // Local damping settles this chain slowly: the unbalanced-force ratio is 4e-3 after 20,000 steps (the stretch
+  // already within 0.5 %) and reaches the default 1e-5 after about 320,000.
+  REQUIRE(sim.solve_to_equilibrium(1e-5, 400000));
   const double weight = 9.81 * (2000 * 0.008 + 0.5 * 7800 * area * 1.8);
   const double stretch = m.end_position(m.deformable.trusses[0].end[1]).z() - 0.2;
   const double expected = -weight * 1.8 / (young * area);
-  MESSAGE("truss: stretch " << stretch << " m, W L / (E A) = " << expected << " m; critical dt " << with_tie << " s");
-  CHECK(stretch == test::approx(expected).epsilon(0.01));
-  CHECK(std::isfinite(with_tie));
+  MESSAGE("truss: stretch " << stretch << " m, W L / (E A) = " << expected << " m");
+  CHECK(stretch == test::approx(expected).epsilon(1e-3));
   CHECK_THROWS_AS(m.add_truss(m.node_end(top), m.node_end(top), area, young, 7800), InvalidArgument);
   CHECK_THROWS_AS(m.add_truss(m.block_end(support, Vec3(0, 0, 2)), m.node_end(top), 0.0, young, 7800), InvalidArgument);
 }
@@ -523,3 +527,5 @@ TEST_CASE("deformable reversibility: a deformable block bouncing on a rigid base
   CHECK(error / moved < 1e-9);
   CHECK(sim.detections() == 1);
 }
+
+}  // namespace test_deformable

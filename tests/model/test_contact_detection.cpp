@@ -11,6 +11,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_contact_detection {
+
 namespace {
 model::Model two_boxes(double lift, double shift = 0) {
   model::Model m;
@@ -51,7 +54,7 @@ TEST_CASE("detection: subdivision bounds the area of every CP and keeps the tota
   CHECK(c.size() == 121);  // a 10 x 10 grid of cells has 11 x 11 vertices
 }
 
-TEST_CASE("detection: blocks apart beyond the tolerance have no contact; interpenetration at the start is an error") {
+TEST_CASE("detection: blocks apart beyond the tolerance have no contact, interpenetration at the start is an error") {
   CHECK(model::detect_contacts(two_boxes(0.002).bodies, model::ContactSettings{}).empty());
   auto m = two_boxes(-0.01);
   try {
@@ -127,3 +130,5 @@ TEST_CASE("polygons: a vertex where the boundary hardly turns is dropped within 
   const Polygon2 sliver{{0, 0}, {0.3, 0}, {0.3, 1e-5}, {0, 1e-5}};
   CHECK(geometry::drop_shallow_vertices(sliver, 1e-3, 0.35).size() == 4);
 }
+
+}  // namespace test_contact_detection

@@ -23,6 +23,9 @@
 
 using namespace blockdem;
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_detection_geometry {
+
 namespace {
 
 using Polyhedron = geometry::ConvexPolyhedron;
@@ -295,3 +298,5 @@ TEST_CASE("detection against geometry: every contact point of the cross vault as
   }
   MESSAGE(points.size() << " contact points; the farthest surface point lies " << worst << " m off its block's surface");
 }
+
+}  // namespace test_detection_geometry

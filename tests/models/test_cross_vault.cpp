@@ -21,6 +21,9 @@
 #include "blockdem/models/cross_vault.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_cross_vault {
 using models::Component;
 
 namespace {
@@ -455,3 +458,5 @@ TEST_CASE("cross vault: general contacts keep every face-to-face contact point o
   CHECK(added == 16);
   CHECK(added_area < 1e-3 * area);
 }
+
+}  // namespace test_cross_vault

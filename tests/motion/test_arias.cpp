@@ -11,6 +11,9 @@
 #include "blockdem/motion/arias.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_arias {
 using namespace blockdem::motion;
 
 namespace {
@@ -104,3 +107,5 @@ TEST_CASE("arias: bad fractions and silent records are named") {
   CHECK_THROWS_WITH_AS(significant_duration(silent), doctest::Contains("silent.txt: the record has zero Arias"),
                        InvalidArgument);
 }
+
+}  // namespace test_arias

@@ -15,6 +15,9 @@
 #include "blockdem/motion/synthetic.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_base_motion {
 using namespace blockdem::motion;
 
 namespace {
@@ -155,3 +158,5 @@ TEST_CASE("base motion: bad records and directions are refused, naming what is w
   CHECK_THROWS_WITH_AS(BaseMotion(record, {}, Vec3::UnitX(), std::numeric_limits<double>::infinity()),
                        doctest::Contains("start time must be finite"), InvalidArgument);
 }
+
+}  // namespace test_base_motion

@@ -11,6 +11,9 @@
 #include "blockdem/motion/integration.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_baseline {
 using namespace blockdem::motion;
 
 namespace {
@@ -105,3 +108,5 @@ TEST_CASE("baseline: specifications parse, chain and name their errors") {
   CHECK_THROWS_WITH_AS(correct_baseline(record, parse_baseline("highpass:60")), doctest::Contains("Nyquist"),
                        InvalidArgument);
 }
+
+}  // namespace test_baseline

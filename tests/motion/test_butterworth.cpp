@@ -11,6 +11,9 @@
 #include "blockdem/motion/butterworth.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_butterworth {
 using namespace blockdem::motion;
 
 namespace {
@@ -95,3 +98,5 @@ TEST_CASE("butterworth: bad designs are rejected with the allowed range") {
   CHECK_THROWS_WITH_AS(filter.filtfilt(std::vector<double>(15, 1.0)), doctest::Contains("padding of 15 samples needs more than 15 samples, got 15"),
                        InvalidArgument);
 }
+
+}  // namespace test_butterworth

@@ -12,6 +12,9 @@
 #include "blockdem/motion/readers.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_integration {
 using namespace blockdem::motion;
 
 TEST_CASE("integration: linear acceleration integrates exactly to the quadratic velocity and cubic displacement") {
@@ -70,3 +73,5 @@ TEST_CASE("integration: the real PEER records reproduce the PGV and PGD of their
     CHECK(100.0 * peaks.pgd == doctest::Approx(c.pgd_cm).epsilon(1e-3));
   }
 }
+
+}  // namespace test_integration

@@ -11,6 +11,9 @@
 #include "blockdem/motion/processing.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_processing {
 using namespace blockdem::motion;
 
 namespace {
@@ -60,7 +63,7 @@ TEST_CASE("processing: downsampling keeps content below the new Nyquist frequenc
   CHECK_THROWS_WITH_AS(resample(record, 15.0), doctest::Contains("fewer than 3 samples"), InvalidArgument);
 }
 
-TEST_CASE("processing: samples at given times become a record; even ones as they were, uneven ones on a finer grid") {
+TEST_CASE("processing: samples at given times become a record, even ones as they were, uneven ones on a finer grid") {
   // Even, with the rounding of decimal times (0.07 - 0.06 = 0.010000000000000009): the same samples.
   std::vector<double> times, values;
   for (int i = 0; i <= 50; ++i) {
@@ -88,3 +91,5 @@ TEST_CASE("processing: samples at given times become a record; even ones as they
   CHECK_THROWS_WITH_AS(record_from_samples({0.0, 1.0}, {1.0}, "f.txt"), doctest::Contains("2 times for 1 accelerations"),
                        InvalidArgument);
 }
+
+}  // namespace test_processing

@@ -11,6 +11,9 @@
 #include "blockdem/motion/pulse.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_pulse {
 using namespace blockdem::motion;
 
 TEST_CASE("pulse: the velocity is eq. 31 and vanishes off its support") {
@@ -76,10 +79,12 @@ TEST_CASE("pulse: a sampled pulse integrates back to its closed-form velocity an
   }
 }
 
-TEST_CASE("pulse: phase pi/2 leaves no residual displacement; gamma must exceed 1") {
+TEST_CASE("pulse: phase pi/2 leaves no residual displacement, gamma must exceed 1") {
   const MavroeidisPapageorgiouPulse odd{0.3, 4.0, 0.5, 1.0, pi / 2.0};
   CHECK(std::abs(odd.displacement(10.0)) < 1e-15);
   CHECK_THROWS_WITH_AS((MavroeidisPapageorgiouPulse{0.3, 1.0, 0.5, 1.0, 0.0}.validate()),
                        doctest::Contains("gamma = 1.000000 must be > 1"), InvalidArgument);
   CHECK_THROWS_AS((MavroeidisPapageorgiouPulse{0.3, 2.0, 0.0, 1.0, 0.0}.validate()), InvalidArgument);
 }
+
+}  // namespace test_pulse

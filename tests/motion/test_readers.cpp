@@ -16,6 +16,9 @@
 #include "blockdem/motion/writers.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_readers {
 using namespace blockdem::motion;
 
 namespace {
@@ -144,7 +147,7 @@ TEST_CASE("readers: ESM/ITACA ASCII with its KEY: value header") {
             .starts_with("e.asc:2: SAMPLING_INTERVAL_S = -0.01 s; the time step must be > 0"));
 }
 
-TEST_CASE("readers: plain text with one column needs the time step; comments may state it and the units") {
+TEST_CASE("readers: plain text with one column needs the time step, comments may state it and the units") {
   const auto record = read_record(data_dir / "one_column.txt", options(AccelerationUnit::g, 0.02));
   REQUIRE(record.size() == 5);
   CHECK(record.dt == 0.02);
@@ -228,3 +231,5 @@ TEST_CASE("readers: format detection and unit names") {
   CHECK(parse_acceleration_unit("mm/s2") == std::nullopt);
   CHECK(to_m_s2(AccelerationUnit::g) == 9.80665);
 }
+
+}  // namespace test_readers

@@ -19,6 +19,9 @@
 #include "blockdem/motion/spectrum.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_spectrum {
 using namespace blockdem::motion;
 
 namespace {
@@ -158,3 +161,5 @@ TEST_CASE("spectrum: periods, damping and default grid") {
   CHECK(periods.front() == doctest::Approx(0.02));
   CHECK(periods.back() == doctest::Approx(10.0));
 }
+
+}  // namespace test_spectrum

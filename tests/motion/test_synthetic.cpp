@@ -16,6 +16,9 @@
 #include "blockdem/motion/writers.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_synthetic {
 using namespace blockdem::motion;
 
 TEST_CASE("synthetic AQA75: the published peaks, dominant period and length (paper Sect. 2, 6.1.2)") {
@@ -57,7 +60,7 @@ TEST_CASE("synthetic AQA75: deterministic and labelled synthetic wherever it goe
   CHECK(back.size() == a.size());
 }
 
-TEST_CASE("synthetic records: other peaks are met too; impossible ones are refused") {
+TEST_CASE("synthetic records: other peaks are met too, impossible ones are refused") {
   SyntheticRecordSpec spec;
   spec.pga = 2.0;
   spec.pgv = 0.15;
@@ -91,3 +94,5 @@ TEST_CASE("ramp record: linear to the level over the ramp, held to the duration,
   CHECK_THROWS_WITH_AS(ramp_record(1.0, 0.1, 1.0, 0.0), doctest::Contains("time step must be > 0 s"), InvalidArgument);
   CHECK_THROWS_WITH_AS(ramp_record(1.0, 0.1, 0.001, 0.01), doctest::Contains("at least one time step"), InvalidArgument);
 }
+
+}  // namespace test_synthetic

@@ -9,6 +9,9 @@
 #include "blockdem/motion/truncation.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_truncation {
 using namespace blockdem::motion;
 
 namespace {
@@ -55,3 +58,5 @@ TEST_CASE("truncation: an Arias range keeps at least that fraction") {
   CHECK(shifted.end == doctest::Approx(118.0));
   CHECK(shifted.arias_fraction == doctest::Approx(0.8).epsilon(1e-9));
 }
+
+}  // namespace test_truncation

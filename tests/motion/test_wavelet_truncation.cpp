@@ -19,6 +19,9 @@
 #include "blockdem/motion/wavelet_truncation.hpp"
 
 using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_wavelet_truncation {
 using namespace blockdem::motion;
 
 namespace {
@@ -48,7 +51,7 @@ Record pulse_in_noise(std::uint32_t seed) {
 
 }  // namespace
 
-TEST_CASE("wavelet truncation: eq. 32 corrected recovers the amplitude from the pulse's own PSV; as printed it does not") {
+TEST_CASE("wavelet truncation: eq. 32 corrected recovers the amplitude from the pulse's own PSV, but as printed it does not") {
   // Reference: the pulse's amplitude A = 0.4 m/s; PSV(T_p) from the exact recursion of the sampled pulse.
   for (auto [gamma_, phase] : {std::pair{3.0, 0.0}, std::pair{5.0, pi / 2.0}, std::pair{8.0, 0.0}}) {
     const double gamma = gamma_;  // (a name a lambda can capture: CAPTURE below)
@@ -152,7 +155,7 @@ TEST_CASE("wavelet truncation: the tabulated pulse peaks match densely sampled c
     }
 }
 
-TEST_CASE("wavelet truncation: the paper's grid alone lands on grid points; the peak constraints hold") {
+TEST_CASE("wavelet truncation: the paper's grid alone lands on grid points, the peak constraints hold") {
   const auto record = pulse_in_noise(2);
   WaveletTruncationOptions options;
   options.period = truth.period;
@@ -240,3 +243,5 @@ TEST_CASE("wavelet truncation: options are checked") {
   options.period = -1.0;
   CHECK_THROWS_AS(wavelet_truncation(record, options), InvalidArgument);
 }
+
+}  // namespace test_wavelet_truncation

@@ -11,9 +11,13 @@
 #include "blockdem/solve/levenberg_marquardt.hpp"
 #include "nist_problems.hpp"
 
+using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_levenberg_marquardt {
+
 namespace {
 
-using namespace blockdem;
 using solve::Vector;
 
 /// r = (10 (x2 - x1^2), 1 - x1): Rosenbrock's function as least squares, minimum 0 at (1, 1).
@@ -124,3 +128,5 @@ TEST_CASE("levenberg_marquardt: each stopping rule reports its status") {
     CHECK_FALSE(summary.converged());
   }
 }
+
+}  // namespace test_levenberg_marquardt

@@ -5,6 +5,9 @@
 #include "blockdem/damping/maxwell_fit.hpp"
 #include "blockdem/solve/levenberg_marquardt.hpp"
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_concepts {
+
 namespace {
 using blockdem::solve::Vector;
 
@@ -44,3 +47,5 @@ static_assert(blockdem::solve::HasAnalyticJacobian<blockdem::damping::detail::Ma
 static_assert(blockdem::solve::HasAnalyticJacobian<blockdem::damping::detail::MaxwellFitProblem<8>>);
 
 TEST_CASE("static: the problem concepts accept and reject what they should (checked at compile time)") { CHECK(true); }
+
+}  // namespace test_concepts

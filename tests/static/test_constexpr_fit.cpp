@@ -9,6 +9,9 @@
 #include "blockdem/damping/maxwell_fit.hpp"
 #include "blockdem/solve/levenberg_marquardt.hpp"
 
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_constexpr_fit {
+
 namespace {
 using blockdem::cmath::abs;
 using blockdem::solve::Vector;
@@ -58,3 +61,5 @@ TEST_CASE("static: the compile-time Maxwell fit equals the run-time one") {
   }
   CHECK(constexpr_fit.iterations == runtime_fit.iterations);
 }
+
+}  // namespace test_constexpr_fit

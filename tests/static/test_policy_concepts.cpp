@@ -10,6 +10,11 @@
 #include "blockdem/damping/concepts.hpp"
 #include "blockdem/damping/policies.hpp"
 
+using namespace blockdem;
+
+// Named: this file shares a unity translation unit (tests/CMakeLists.txt).
+namespace test_static_policy_concepts {
+
 namespace {
 struct NotALaw {
   struct Parameters {};
@@ -23,7 +28,6 @@ struct NoVelocityUpdate {
 };
 }  // namespace
 
-using namespace blockdem;
 static_assert([]<class... L>(std::tuple<L...>*) { return (contact::ContactLaw<L> && ...); }(static_cast<contact::ShippedLaws*>(nullptr)));
 static_assert(!contact::ContactLaw<NotALaw>);
 static_assert(!contact::ContactLaw<int>);
@@ -36,3 +40,5 @@ static_assert(!damping::DampingPolicy<double>);
 static_assert(sizeof(damping::None::ContactState) == 1 && std::is_empty_v<damping::None::ContactState>);
 
 TEST_CASE("static: every joint law and damping policy models its concept (checked at compile time)") { CHECK(true); }
+
+}  // namespace test_static_policy_concepts
