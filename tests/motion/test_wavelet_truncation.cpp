@@ -4,6 +4,8 @@
 
 #include <doctest/doctest.h>
 
+#include "../approx.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -148,9 +150,12 @@ TEST_CASE("wavelet truncation: the tabulated pulse peaks match densely sampled c
       const auto peaks = pulse_peaks(pulse);
       CAPTURE(gamma);
       CAPTURE(phase);
-      CHECK(peaks.velocity == doctest::Approx(dense.velocity).epsilon(1.3e-3));
-      CHECK(peaks.acceleration == doctest::Approx(dense.acceleration).epsilon(1.3e-3));
-      CHECK(peaks.displacement == doctest::Approx(dense.displacement).epsilon(1.3e-3));
+      // 64 samples per carrier period: within (1 - cos(pi / 64)) (1 + 1 / (2 gamma^2)) of the peak, 0.12 % for a long
+      // envelope and 0.18 % for the shortest (gamma 1.01, phase 0: 0.177 %).
+      const double bound = (1 - std::cos(pi / 64)) * (1 + 0.5 / (gamma * gamma));
+      CHECK(peaks.velocity == test::approx(dense.velocity).epsilon(bound));
+      CHECK(peaks.acceleration == test::approx(dense.acceleration).epsilon(bound));
+      CHECK(peaks.displacement == test::approx(dense.displacement).epsilon(bound));
       CHECK(peaks.velocity <= dense.velocity * (1.0 + 1e-9));
     }
 }
