@@ -8,6 +8,8 @@
 //   -> block pass (integrate/block_pass.hpp) -> node pass (integrate/node_pass.hpp).
 // The timestep and density scaling are in integrate/timestep.hpp, the energy balance in integrate/energy.hpp, the
 // output view of the contacts in integrate/contact_view.hpp. Results do not depend on the number of OpenMP threads.
+// The members that set the timestep and the masses are defined in integrate/simulation_masses.hpp, the checkpoint
+// state in integrate/simulation_state.hpp.
 
 #include <algorithm>
 #include <chrono>
@@ -203,14 +205,7 @@ class Simulation {
   /// The mass (kg) that scale_density_to(target_dt) would add, the model left as it is; `timestep_factor(omega)`
   /// in place of the damping policy's (eq. 11, eq. 20), for the policy of a simulation still to come.
   template <class Factor>
-  double density_scaling_mass(double target_dt, Factor timestep_factor) const {
-    const MassPlan plan = plan_masses(*model_, groups_, deformable(), real_masses(), bounded_frequency(), target_dt,
-                                      safety_factor(), MassRule::raise_only, timestep_factor);
-    double added = 0;
-    for (std::size_t i = 0; i < plan.block_mass.size(); ++i) added += plan.block_mass[i] - model_->bodies.mass[i];
-    for (std::size_t i = 0; i < plan.node_mass.size(); ++i) added += plan.node_mass[i] - model_->deformable.nodes.mass[i];
-    return added;
-  }
+  double density_scaling_mass(double target_dt, Factor timestep_factor) const;
 
   /// Static mass scaling (3DEC's for static solutions; statics do not depend on the masses): every free node gets
   /// exactly the mass whose own limit 2 safety f / sqrt(k / m) is the target timestep, raised or lowered, and every
@@ -233,20 +228,7 @@ class Simulation {
   /// scale_masses_for_statics(). The kinetic energy is that of the real masses from the next step on: call it at
   /// rest (after settling), where the energy balance does not notice. The mixed step stays on (its weight correction
   /// is then zero); a simulation continued from this one runs the rigid kernel if the model is rigid-only.
-  void restore_real_masses() {
-    auto& b = model_->bodies;
-    auto& nd = model_->deformable.nodes;
-    if (mixed_) {  // blocks are scaled only in the mixed step, which keeps their real masses
-      b.mass = deformable_.rigid_real_mass;
-      b.principal_inertia = deformable_.rigid_real_inertia;
-      nd.mass = nd.real_mass;
-      for (std::size_t i = 0; i < nd.size(); ++i) deformable_.node_inverse_mass[i] = 1.0 / nd.mass[i];
-    }
-    blocks_.set_inverse_masses(b);
-    static_masses_ = false;
-    density_safety_ = 0;
-    set_timestep(default_timestep());
-  }
+  void restore_real_masses();
 
   /// Whether the masses are those of scale_masses_for_statics() (not yet restored).
   bool static_masses() const { return static_masses_; }
@@ -260,18 +242,7 @@ class Simulation {
   }
 
   /// Sets the timestep (s). Throws InvalidArgument if it exceeds the critical timestep, unless unchecked.
-  void set_timestep(double dt, TimestepCheck check = TimestepCheck::checked) {
-    const double critical = critical_timestep();
-    if (!(dt > 0) || !std::isfinite(dt))
-      throw InvalidArgument("timestep must be > 0 s and finite, got " + std::to_string(dt));
-    if (check == TimestepCheck::checked && dt > critical)
-      throw InvalidArgument("timestep " + std::to_string(dt) + " s exceeds the critical timestep " +
-                            std::to_string(critical) + " s (eq. 1 with the damping factor of eq. 11/20)");
-    dt_ = dt;
-    timestep_margin_ = check == TimestepCheck::checked && std::isfinite(critical) ? dt / critical : 0.0;
-    if constexpr (damping::PreparedDamping<Damping>) damping_.prepare(dt_);
-    refresh_closure_bound();
-  }
+  void set_timestep(double dt, TimestepCheck check = TimestepCheck::checked);
 
   /// closure_inverse_omega_squared() for the present contacts, masses and timestep.
   void refresh_closure_bound() { set_closure_bound(bounded_frequency() ? omega_max() : 0.0); }
@@ -467,63 +438,10 @@ class Simulation {
   /// balance's contact_update term); any other run with a checked timestep keeps its margin dt / dt_critical by
   /// lowering the timestep. Without this, one stiff new contact point at a light node diverges in a few steps.
   /// Returns omega_max() after the hold (0 under static masses), from one FrequencyBound unless it raised masses.
-  double hold_timestep() {
-    if (!bounded_frequency()) return 0.0;  // static masses (settling): the estimate's wide margin, and local damping
-    if (density_safety_ > 0) {
-      ++hold_.checks;
-      const MassPlan plan = plan_masses(*model_, groups_, deformable(), real_masses(), bounded_frequency(), dt_, density_safety_,
-                                        MassRule::raise_only, [&](double omega) { return damping_.timestep_factor(omega); });
-      const MassRaise raised = raise_masses(*model_, plan, deformable_.node_inverse_mass, blocks_);
-      if (raised.nodes + raised.blocks == 0) return plan.omega_max;
-      ++hold_.raises;
-      hold_.raised_nodes += raised.nodes;
-      hold_.raised_blocks += raised.blocks;
-      hold_.added_mass += raised.added;
-      hold_.kinetic_energy += raised.kinetic;
-      contact_update_ += raised.kinetic;
-      return omega_max();
-    }
-    const double omega = omega_max();
-    if (!(timestep_margin_ > 0)) return omega;
-    ++hold_.checks;
-    const double critical = critical_timestep(omega);
-    if (!(dt_ > timestep_margin_ * critical)) return omega;
-    const double margin = timestep_margin_;
-    set_timestep(margin * critical);
-    timestep_margin_ = margin;
-    ++hold_.reductions;
-    hold_.smallest_dt = dt_;
-    return omega;
-  }
+  double hold_timestep();
 
   /// The mass scaling of scale_density_to() and scale_masses_for_statics(), by `rule`.
-  DensityScaling scale_masses(double target_dt, double safety_factor, MassRule rule) {
-    const std::string what = rule == MassRule::raise_only ? "density scaling" : "static mass scaling";
-    if (!(target_dt > 0) || !std::isfinite(target_dt))
-      throw InvalidArgument(what + ": the target timestep must be > 0 s and finite, got " + std::to_string(target_dt));
-    if (!(safety_factor > 0 && safety_factor <= 1))
-      throw InvalidArgument(what + ": the safety factor must be in (0, 1], got " + std::to_string(safety_factor));
-    DensityScaling r;
-    r.target_dt = target_dt;
-    r.dt_critical_unscaled = critical_timestep();
-    // Static masses: the one frequency without the policy's factor (Local's 1 / sqrt(1 + c) lies inside the
-    // estimate's margin: omega dt = 2 safety = 1 < 2 / sqrt(1.8) for a block on its own).
-    const MassPlan plan = plan_masses(*model_, groups_, deformable(), real_masses(), bounded_frequency(), target_dt,
-                                      safety_factor, rule, [&](double omega) {
-                                        return rule == MassRule::exact ? 1.0 : damping_.timestep_factor(omega);
-                                      });
-    if (!mixed_) {  // the weight correction of scaled rigid blocks runs in the mixed path, which keeps the real masses
-      mixed_ = true;
-      deformable_.setup(*model_);
-    }
-    apply_mass_plan(*model_, plan, real_masses(), deformable_.node_inverse_mass, blocks_, r);
-    static_masses_ = rule == MassRule::exact;
-    density_safety_ = rule == MassRule::raise_only ? safety_factor : 0.0;
-    r.dt_critical = critical_timestep();
-    set_timestep(target_dt);
-    r.dt = dt_;
-    return r;
-  }
+  DensityScaling scale_masses(double target_dt, double safety_factor, MassRule rule);
 
   /// The deformable state for the passes that read it, null while the rigid kernel runs.
   const DeformableState<Damping, Laws...>* deformable() const { return mixed_ ? &deformable_ : nullptr; }
@@ -637,44 +555,7 @@ class Simulation {
   /// redetection distances (from the poses at the last detection); the assignments' scratch. The damping policy is
   /// saved whole: its parameters and the constants of prepare(dt).
   template <class Self, class Archive>
-  static void visit_state(Self& s, Archive& ar) {
-    ar.check("the simulation type (damping policy, joint laws)", io::type_name<Simulation>());
-    ar("model", *s.model_);
-    static_assert(io::plain_checkpoint_value<Damping>, "a checkpoint saves the damping policy as its bytes");
-    ar("damping policy", s.damping_);
-    ar("mixed step", s.mixed_);
-    ar("deformable state", s.deformable_);
-    std::apply([&](auto&... g) { (ar("contact group", g), ...); }, s.groups_);
-    ar("timestep", s.dt_);
-    ar("time", s.time_);
-    ar("steps", s.steps_);
-    ar("steps since the last detection check", s.steps_since_check_);
-    ar("detections", s.detections_);
-    ar("pending increment", s.pending_increment_);
-    ar("moved since the last detection", s.moved_since_detection_);
-    ar("static masses", s.static_masses_);
-    auto& blocks = s.blocks_;
-    ar.same_size("block kinetic energies", blocks.kinetic);
-    ar.same_size("block gravity work", blocks.gravity_work);
-    ar.same_size("block base work", blocks.base_work);
-    ar.same_size("block viscous work", blocks.viscous);
-    ar.same_size("block inverse masses", blocks.inverse_mass);
-    ar.same_size("block inverse inertias", blocks.inverse_inertia);
-    ar.same_size("block positions at the last detection", blocks.detected_position);
-    ar.same_size("block orientations at the last detection", blocks.detected_orientation);
-    ar("base displacement", blocks.base_displacement);
-    ar("base displacement at the last detection", blocks.detected_base_displacement);
-    ar("energy reference", s.energy0_);
-    ar("energy reference pending", s.energy_reference_pending_);
-    ar("retired slip", s.retired_slip_);
-    ar("retired viscous work", s.retired_viscous_);
-    ar("energy added by contact updates", s.contact_update_);
-    ar("timestep of the last move", s.last_move_dt_);
-    ar("density scaling safety factor", s.density_safety_);
-    ar("timestep margin", s.timestep_margin_);
-    ar("timestep hold", s.hold_);
-    ar("closure impulse bound", s.closure_inverse_omega_squared_);
-  }
+  static void visit_state(Self& s, Archive& ar);
 
   model::Model* model_;
   Damping damping_;
@@ -710,3 +591,8 @@ class Simulation {
 };
 
 }  // namespace blockdem
+
+// The members' definitions by job: the timestep and the masses (density scaling, static mass scaling, the hold),
+// and the checkpoint state.
+#include "blockdem/integrate/simulation_masses.hpp"
+#include "blockdem/integrate/simulation_state.hpp"
