@@ -5,23 +5,27 @@
 # 2 GB of memory, an exception other than InvalidArgument/InputError or a harness that does not build fails the
 # run; what failed is kept in OUT/artifacts/<name>/ with the command that reproduces it.
 #
-#   scripts/run-fuzzers.sh [--seconds N] [--out DIR] [HARNESS...]
+#   scripts/run-fuzzers.sh [--seconds N] [--jobs J] [--out DIR] [HARNESS...]
 #     --seconds N   fuzzing time per harness (default 60)
+#     --jobs J      harnesses built and fuzzed at a time (default: the number of cores)
 #     --out DIR     binaries, working corpora, logs and artifacts (default build-fuzz)
 #     HARNESS       names such as motion_record or fuzz_checkpoint (default: every tests/fuzz/fuzz_*.cpp)
 #
 # Needs clang++ (FUZZ_CXX=another one) and libFuzzer's runtime: the Debian packages clang and libclang-rt-14-dev.
 set -euo pipefail
 
-usage() { sed -n '8,13p' "$0" | sed 's/^# \{0,1\}//'; }
+usage() { sed -n '8,14p' "$0" | sed 's/^# \{0,1\}//'; }
 
 seconds=60
+jobs=$(nproc 2>/dev/null || echo 1)
 out=build-fuzz
 names=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --seconds) [ $# -ge 2 ] || { usage >&2; exit 2; }; seconds=$2; shift 2 ;;
     --seconds=*) seconds=${1#*=}; shift ;;
+    --jobs) [ $# -ge 2 ] || { usage >&2; exit 2; }; jobs=$2; shift 2 ;;
+    --jobs=*) jobs=${1#*=}; shift ;;
     --out) [ $# -ge 2 ] || { usage >&2; exit 2; }; out=$2; shift 2 ;;
     --out=*) out=${1#*=}; shift ;;
     -h|--help) usage; exit 0 ;;
@@ -31,6 +35,9 @@ while [ $# -gt 0 ]; do
 done
 case "$seconds" in
   ''|*[!0-9]*|0) echo "run-fuzzers.sh: --seconds must be a whole number of seconds >= 1, got '$seconds'" >&2; exit 2 ;;
+esac
+case "$jobs" in
+  ''|*[!0-9]*|0) echo "run-fuzzers.sh: --jobs must be a whole number >= 1, got '$jobs'" >&2; exit 2 ;;
 esac
 
 # OUT relative to where the script was called from; everything else relative to the repository.
@@ -88,10 +95,11 @@ sanitizer_env+=("TMPDIR=$scratch")
 
 flags=(-std=c++20 -O1 -g0 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=all -Iinclude -isystem "$eigen")
 
-start=$(date +%s)
-summary=()
-failed=0
-for name in "${names[@]}"; do
+# One harness: build, seeds, fuzz. Its report goes to OUT/logs/NAME.report, its row of the summary to
+# OUT/logs/NAME.summary; the status says whether it passed.
+fuzz_one() {
+  local name=$1
+  printf_summary() { echo "$1" > "$out/logs/$name.summary"; }
   bin="$out/bin/fuzz_$name"
   corpus="$out/corpus/$name"
   artifacts="$out/artifacts/$name"
@@ -104,9 +112,8 @@ for name in "${names[@]}"; do
   if ! nice -n 10 "$cxx" "${flags[@]}" "tests/fuzz/fuzz_$name.cpp" -o "$bin" > "$out/logs/$name.build.log" 2>&1; then
     echo "   build failed (log: $out/logs/$name.build.log):"
     grep -m 20 -E "error|Error" "$out/logs/$name.build.log" | sed 's/^/   /' || true
-    summary+=("$(printf '%-16s %6s %12s %8s %7s %7s %15s  FAIL (does not build)' "$name" - - - - - -)")
-    failed=1
-    continue
+    printf_summary "$(printf '%-16s %6s %12s %8s %7s %7s %15s  FAIL (does not build)' "$name" - - - - - -)"
+    return 1
   fi
   build_seconds=$(( $(date +%s) - build_start ))
 
@@ -115,20 +122,17 @@ for name in "${names[@]}"; do
   if grep -q BLOCKDEM_FUZZ_WRITE_SEEDS "tests/fuzz/fuzz_$name.cpp"; then
     if ! env "${sanitizer_env[@]}" BLOCKDEM_FUZZ_WRITE_SEEDS="$corpus" "$bin" > "$out/logs/$name.seeds.log" 2>&1; then
       echo "   writing its seeds failed (log: $out/logs/$name.seeds.log)"
-      summary+=("$(printf '%-16s %6s %12s %8s %7s %7s %15s  FAIL (writing its seeds)' "$name" - - - - - -)")
-      failed=1
-      continue
+      printf_summary "$(printf '%-16s %6s %12s %8s %7s %7s %15s  FAIL (writing its seeds)' "$name" - - - - - -)"
+      return 1
     fi
   fi
 
   echo "== $name: fuzzing for $seconds s (built in $build_seconds s)"
   fuzz_start=$(date +%s)
-  set +e
+  status=0
   (cd "$artifacts" && env "${sanitizer_env[@]}" timeout --kill-after=30 $((seconds + 300)) "$bin" \
       -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
-      -artifact_prefix="$artifacts/" "$corpus") > "$log" 2>&1
-  status=$?
-  set -e
+      -artifact_prefix="$artifacts/" "$corpus") > "$log" 2>&1 || status=$?
   fuzz_seconds=$(( $(date +%s) - fuzz_start ))
 
   execs=$(grep -a 'stat::number_of_executed_units' "$log" | tail -1 | awk '{print $2}')
@@ -142,12 +146,11 @@ for name in "${names[@]}"; do
   if [ "$status" -eq 0 ] && [ -z "$found" ]; then
     verdict=PASS
   else
-    failed=1
     kind=$(grep -a -o -m 1 -E 'ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer): [a-z0-9-]+( [a-z0-9-]+){0,3}|runtime error: .{0,90}|terminate called .{0,80}|fuzz_[a-z_]+: .{0,80}' "$log" | head -1 || true)
     verdict="FAIL (${kind:-exit status $status})"
   fi
-  summary+=("$(printf '%-16s %6s %12s %8s %7s %7s %15s  %s' "$name" "$fuzz_seconds" "${execs:--}" "${rate:--}" \
-                "${cov:--}" "${ft:--}" "$files/${kbytes}kB" "$verdict")")
+  printf_summary "$(printf '%-16s %6s %12s %8s %7s %7s %15s  %s' "$name" "$fuzz_seconds" "${execs:--}" "${rate:--}" \
+                "${cov:--}" "${ft:--}" "$files/${kbytes}kB" "$verdict")"
   echo "   $verdict after $fuzz_seconds s: ${execs:-?} executions, ${rate:-?}/s, cov ${cov:-?}, ft ${ft:-?}," \
        "corpus $files files (log: $log)"
   if [ "$verdict" != PASS ]; then
@@ -157,10 +160,29 @@ for name in "${names[@]}"; do
     fi
     grep -a -m 12 -E 'ERROR:|SUMMARY:|runtime error|terminate called|what\(\)|^    #[0-9] |fuzz_[a-z_]+: ' "$log" | sed 's/^/   | /' || true
   fi
+  [ "$verdict" = PASS ]
+}
+
+start=$(date +%s)
+# J harnesses at a time (libFuzzer runs one process per harness); the reports are printed in the harnesses' order.
+pids=()
+for name in "${names[@]}"; do
+  while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
+  rm -f "$out/logs/$name.summary" "$out/logs/$name.status"
+  ( status=0; fuzz_one "$name" > "$out/logs/$name.report" 2>&1 || status=$?; echo "$status" > "$out/logs/$name.status" ) &
+  pids+=($!)
+done
+wait "${pids[@]}" || true
+failed=0
+summary=()
+for name in "${names[@]}"; do
+  cat "$out/logs/$name.report"
+  [ "$(cat "$out/logs/$name.status" 2>/dev/null)" = 0 ] || failed=1
+  summary+=("$(cat "$out/logs/$name.summary" 2>/dev/null || printf '%-16s  FAIL (no report)' "$name")")
 done
 
 echo
-echo "fuzzing: $seconds s per harness, $(( $(date +%s) - start )) s in all; binaries, corpora and logs in $out"
+echo "fuzzing: $seconds s per harness, $jobs at a time, $(( $(date +%s) - start )) s in all; binaries, corpora and logs in $out"
 printf '%-16s %6s %12s %8s %7s %7s %15s  %s\n' harness time_s executions exec/s cov ft corpus result
 for line in "${summary[@]}"; do echo "$line"; done
 exit "$failed"
