@@ -1,9 +1,8 @@
 #pragma once
 // The timestep and the masses: setting the timestep, partial density scaling, static mass scaling, the
 // real masses back, and the hold against contacts that appear during a run (eq. 1-3, 11, 20; Sect. 3.2). Members of
-// Simulation, declared and documented in integrate/simulation.hpp.
-
-#include "blockdem/integrate/simulation.hpp"
+// Simulation, declared and documented in integrate/simulation.hpp, which includes this file after the class: include
+// that one.
 
 namespace blockdem {
 

@@ -1,8 +1,6 @@
 #pragma once
 // The checkpoint state of Simulation: the one list of its saved fields (declared and documented in
-// integrate/simulation.hpp).
-
-#include "blockdem/integrate/simulation.hpp"
+// integrate/simulation.hpp, which includes this file after the class: include that one).
 
 namespace blockdem {
 
