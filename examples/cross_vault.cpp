@@ -6,6 +6,8 @@
 //   cross_vault sweep SWEEP.json [--out DIR] [--case K] [--list] [--summarize] [the options of run]
 //       runs every case of a sweep (damping schemes and their grids x records x levels or intensity targets x
 //       kinematics) into DIR/cases/<id>/ and sums them up in DIR/summary.csv; under `mpirun -np N` when built with MPI;
+//   cross_vault model [the options of run] > vault.json
+//       writes the vault and its study as a model file (docs/model-file.md): `blockdem run vault.json` is that run;
 //   cross_vault --geometry-only [--vtk vault.vtu] [--contacts-vtk cps.vtu] [--json] [--profile segmental|elliptical] [...]
 //       builds and checks the blocks of every component (validity, overlaps, contacts, masses) and writes them out.
 //
@@ -15,6 +17,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
 #include <map>
 #include <string>
 #include <vector>
@@ -29,6 +32,7 @@
 #include "blockdem/io/vtk.hpp"
 #include "blockdem/models/cross_vault.hpp"
 #include "cli.hpp"
+#include "study_cli.hpp"
 
 namespace {
 
@@ -37,20 +41,17 @@ std::string vector_json(const blockdem::Vec3& p) {
   return "[" + JsonObject::number(p.x()) + ", " + JsonObject::number(p.y()) + ", " + JsonObject::number(p.z()) + "]";
 }
 
-/// The options of `cross_vault run` (analysis::VaultStudyOptions).
+/// The options of `cross_vault run`: the study's (study_cli.hpp) and the vault's kinematics.
 struct RunCommand {
   blockdem::analysis::VaultStudyOptions study;
-  std::string units, truncation = "window", axis = "y";
-  std::vector<double> window{0, 15}, band{1, 40};
-  bool quiet = false, json = false;
+  blockdem::programs::StudyCommand common;
   CLI::Option* out = nullptr;
 
   void add_to(CLI::App& app) {
-    using blockdem::analysis::DampingScheme;
     auto& o = study;
     o.out_dir = "vault_run";
-    out = app.add_option("--out", o.out_dir, "output folder (created if missing; with --resume: the checkpoint's folder)")
-              ->capture_default_str();
+    common.add_to(app, o, "the vault");
+    out = common.out;
     app.add_option("--kinematics", o.kinematics, "rigid blocks, mixed (steel frame rigid, the rest deformable, Sect. 6.1.1) "
                                                  "or deformable (constant-strain tetrahedra, Sect. 5)")
         ->transform(CLI::CheckedTransformer(std::map<std::string, blockdem::analysis::VaultKinematics>{
@@ -62,85 +63,13 @@ struct RunCommand {
         ->capture_default_str();
     app.add_option("--steel-max-edge", o.steel_max_edge,
                    "deformable: largest tetrahedron edge in the steel frame and the movable piers, m [0.01, 10]")->capture_default_str();
-    app.add_option("--record", o.record_path, "acceleration record (PEER .AT2, ESM ASCII, text); default: the built-in synthetic AQA75 stand-in");
-    app.add_option("--units", units, "units of the record's samples: g, m/s2 or cm/s2 (default: from its header)")
-        ->check(CLI::IsMember({"g", "m/s2", "cm/s2"}));
-    app.add_option("--axis", axis, "the table moves along x or y (the vault's longitudinal axis)")->capture_default_str();
-    app.add_option("--record-level", o.record_level, "the share of the original record that the input represents, % (0, 1000]")->capture_default_str();
-    app.add_option("--levels", o.levels, "levels to run one after another, % of the original record, (0, 1000]")
-        ->delimiter(',')->capture_default_str();
-    app.add_option("--truncate", truncation, "cut of the record: window (--window) or wavelet (the pulse support, Sect. 6.1.2)")
-        ->check(CLI::IsMember({"window", "wavelet"}))->capture_default_str();
-    app.add_option("--window", window, "start and end of the window on the record's clock, s")->expected(2)->capture_default_str();
-    app.add_option("--baseline", o.baseline, std::string("baseline correction: ") + blockdem::motion::baseline_grammar)->capture_default_str();
-    app.add_option("--rest", o.rest, "free motion after each level, the table going on at the velocity its record ends with (report.json: final_table_velocity_m_s), s [0, 600]")->capture_default_str();
-    app.add_option("--damping", o.damping, "viscous damping of the dynamic run")
-        ->transform(CLI::CheckedTransformer(std::map<std::string, DampingScheme>{{"none", DampingScheme::none},
-                                                                                   {"mass", DampingScheme::mass},
-                                                                                   {"stiffness", DampingScheme::stiffness},
-                                                                                   {"rayleigh", DampingScheme::rayleigh},
-                                                                                   {"maxwell", DampingScheme::maxwell}}))
-        ->capture_default_str();
-    app.add_option("--zeta", o.zeta, "target damping ratio (default: maxwell 0.03, mass 0.04, stiffness and rayleigh 0.03)");
-    app.add_option("--frequency", o.frequency_hz, "mass: centre frequency; stiffness: frequency of --zeta, Hz")->capture_default_str();
-    app.add_option("--band", band, "maxwell: the band of the fit; rayleigh: its two frequencies, Hz")->expected(2)->capture_default_str();
-    app.add_option("--branches", o.branches, "maxwell: number of branches, 1..4")->capture_default_str();
-    app.add_option("--target-dt", o.target_dt, "timestep of the dynamic run, s: above the unscaled one by partial density scaling, below it as given (0: the largest whose density scaling adds at most --mass-increase % of the mass)")
-        ->capture_default_str();
-    app.add_option("--mass-increase", o.default_mass_increase_percent, "mass that the automatic timestep may add by density scaling, %")
-        ->capture_default_str();
-    app.add_option("--max-mass-increase", o.max_mass_increase_percent, "refuse a --target-dt that adds more mass than this, %")->capture_default_str();
-    app.add_option("--settle-tolerance", o.settle_tolerance, "unbalanced-force ratio that ends settling")->capture_default_str();
-    app.add_option("--settle-steps", o.settle_max_steps, "most steps of settling")->capture_default_str();
-    app.add_option("--contacts", o.contacts,
-                   "general (vertex, edge and face: blocks may turn as far as a collapse takes them) or faces (face to "
-                   "face within 20 degrees only)")
-        ->transform(CLI::CheckedTransformer(std::map<std::string, blockdem::model::ContactKinds>{
-                                                {"general", blockdem::model::ContactKinds::general}, {"faces", blockdem::model::ContactKinds::faces}},
-                                            CLI::ignore_case))
-        ->capture_default_str();
-    app.add_option("--collapse-displacement", o.collapse_displacement,
-                   "a monitor point this far from where it settled means the vault collapsed: the level ends there and no "
-                   "further level runs (report.json: collapse), m [0.001, --runaway-displacement]")
-        ->capture_default_str();
-    app.add_option("--runaway-displacement", o.runaway_displacement,
-                   "stop with an error when a monitor point moves farther than this from where it settled, m [0.001, 1e6]")
-        ->capture_default_str();
-    app.add_option("--max-speed", o.max_speed, "stop with an error when a block or node moves faster than this, m/s [0.1, 1e6]")
-        ->capture_default_str();
-    app.add_option("--history-dt", o.history_dt, "sampling interval of the histories, s")->capture_default_str();
-    app.add_option("--snapshots-every", o.snapshots_every, "write the blocks every DT s of simulated time (snapshots.pvd for ParaView; 0: none)")
-        ->capture_default_str();
-    app.add_flag("--free-vibration", o.free_vibration,
-                 "first measure the settled vault's first frequency and damping ratio in free decay (into report.json)");
-    app.add_option("--checkpoint-minutes", o.checkpoint_minutes,
-                   "also write OUT/checkpoint.bin every this many minutes of wall time (it is always written at the end of "
-                   "each level and when the run is stopped), [0, 1e6]")->capture_default_str();
-    app.add_option("--resume", o.resume, "continue the run that wrote this checkpoint, with the same options; the result is "
-                                         "bitwise that of the run not stopped");
-    app.add_option("--stop-after-steps", o.stop_after_steps,
-                   "stop with a checkpoint once the dynamic run has taken this many steps in all (to split a run over batch jobs; 0: never)")
-        ->capture_default_str();
-    app.add_flag("--quiet", quiet, "no progress line");
-    app.add_flag("--json", json, "print report.json at the end");
+    app.get_option("--record")->description("acceleration record (PEER .AT2, ESM ASCII, text); default: the built-in synthetic AQA75 stand-in");
+    for (CLI::Option* option : app.get_options()) option->capture_default_str();  // the vault study's defaults in --help
   }
 
   void finish() {
-    using namespace blockdem;
-    auto& o = study;
-    if (!units.empty()) o.read.units = motion::parse_acceleration_unit(units);
-    if (axis != "x" && axis != "y") throw InvalidArgument("--axis must be x or y, got '" + axis + "'");
-    o.axis = axis[0];
-    o.truncation = truncation == "wavelet" ? analysis::Truncation::wavelet : analysis::Truncation::window;
-    o.window_start = window[0];
-    o.window_end = window[1];
-    o.lower_hz = band[0];
-    o.upper_hz = band[1];
-    o.progress = !quiet;
-    if (!o.resume.empty() && out->count() == 0) {
-      const auto folder = std::filesystem::path(o.resume).parent_path();
-      o.out_dir = folder.empty() ? std::string(".") : folder.string();
-    }
+    if (common.axis_option->count() > 0 && common.axis == "z") throw blockdem::InvalidArgument("--axis must be x or y, got 'z'");
+    common.finish(study);
   }
 };
 
@@ -204,7 +133,7 @@ int run_study(RunCommand& command) {
   command.finish();
   stop_on_interrupt();
   const auto r = analysis::run_vault_study(command.study);
-  if (command.json) {
+  if (command.common.json) {
     fmt::print("{}\n", analysis::detail::report_json(r));
     return r.interrupted ? 1 : 0;
   }
@@ -281,6 +210,11 @@ int main(int argc, char** argv) {
                                                 "targets (Sect. 5, Table 3; IDA), on MPI ranks when built with MPI");
   sweep.add_to(*sweep_app);
   sweep_app->fallthrough();
+  RunCommand model_command;
+  auto* model_app = app.add_subcommand("model", "write the vault and the study of the options of `run` as a model file "
+                                                "(docs/model-file.md) on stdout: `blockdem run` on it is `cross_vault run`");
+  model_command.add_to(*model_app);
+  model_app->fallthrough();
   CompareCommand compare;
   auto* compare_app = app.add_subcommand("compare", "error metrics of Sect. 5 (eq. 26-30) of a run against measured channels");
   compare.add_to(*compare_app);
@@ -313,16 +247,23 @@ int main(int argc, char** argv) {
   app.add_option("--max-cp-area", contacts.max_contact_point_area, "largest area per contact point, m^2, 0 or >= 1e-4 (0: CPs at the corners)")
       ->capture_default_str();
   if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
-  if (compare_app->parsed() || run_app->parsed() || sweep_app->parsed()) {
-    const char* command = compare_app->parsed() ? "compare" : run_app->parsed() ? "run" : "sweep";
+  if (compare_app->parsed() || run_app->parsed() || sweep_app->parsed() || model_app->parsed()) {
+    const char* command = compare_app->parsed() ? "compare" : run_app->parsed() ? "run" : model_app->parsed() ? "model" : "sweep";
     run.study.vault = o;
     sweep.base.study.vault = o;
+    model_command.study.vault = o;
     auto bad_input = [&](const std::exception& e) {
       std::fprintf(stderr, "cross_vault %s: error: %s\n", command, e.what());
       return programs::exit_bad_input;
     };
     try {
       if (sweep_app->parsed()) return run_sweep_command(sweep, argc, argv);
+      if (model_app->parsed()) {
+        model_command.finish();
+        model_command.study.validate();
+        analysis::write_model_file(std::cout, analysis::vault_description(model_command.study), model_command.study);
+        return std::cout.flush() ? 0 : 1;
+      }
       return compare_app->parsed() ? compare.run() : run_study(run);
     } catch (const InvalidArgument& e) {
       return bad_input(e);

@@ -18,9 +18,10 @@
 #include <system_error>
 #include <vector>
 
-#include "blockdem/analysis/vault_checkpoint.hpp"
-#include "blockdem/analysis/vault_recorders.hpp"
-#include "blockdem/analysis/vault_report.hpp"
+#include "blockdem/analysis/damage_memory.hpp"
+#include "blockdem/analysis/study_checkpoint.hpp"
+#include "blockdem/analysis/study_recorders.hpp"
+#include "blockdem/analysis/study_report.hpp"
 #include "blockdem/contact/elastic.hpp"
 #include "blockdem/contact/mohr_coulomb.hpp"
 #include "blockdem/contact/softening.hpp"
@@ -55,11 +56,12 @@ struct VaultRun {
 
   model::Model model;
   std::unique_ptr<Sim> sim;
-  analysis::VaultStudyResult result;
+  analysis::StudyResult result;
   analysis::StudyCursor cursor;
   std::unique_ptr<analysis::MonitorHistory> history;
   analysis::SnapshotSeries snapshots{""};
   std::vector<Vec3> settled;
+  analysis::DamageMemory memory;
 
   static Sim::Properties law(int ta, int tb) {
     switch (std::min(ta, tb)) {
@@ -81,9 +83,10 @@ struct VaultRun {
                                        damping::MaxwellBranch::from_peak(0.03, two_pi * 8.0),
                                        damping::MaxwellBranch::from_peak(0.03, two_pi * 30.0)});
     sim = std::make_unique<Sim>(model, maxwell, law);
-    const std::vector<models::MonitorPoint> points{{"R1", Vec3(0, 0, 0.3), lower}, {"D1", Vec3(0, 0, 0.5), upper}};
+    const std::vector<model::MonitorPoint> points{{"R1", Vec3(0, 0, 0.3), lower}, {"D1", Vec3(0, 0, 0.5), upper}};
     history = std::make_unique<analysis::MonitorHistory>(model, points, base);
     settled = model.bodies.position;
+    memory.start(*sim, model);
   }
 
   /// A level in progress after `steps` steps (for the seeds).
@@ -108,7 +111,7 @@ struct VaultRun {
 
   template <class Archive>
   void study(Archive& ar) {
-    analysis::detail::visit_study_state(ar, result, cursor, *sim, *history, snapshots, settled);
+    analysis::detail::visit_study_state(ar, result, cursor, *sim, *history, snapshots, settled, memory);
   }
 };
 

@@ -1,79 +1,27 @@
 #pragma once
-// The incremental shake-table analysis of the LNEC cross vault (paper Sect. 5, 6.1; Table 4, Figs. 14-18): the vault
-// settled under gravity, then shaken at each level of the record in turn on one state (damage accumulates), under
-// one damping scheme, with the monitor histories, the damage at the end of each level, the energy balance and the
-// timings. run_vault_study() is the driver; the outputs it writes are listed in write_level_outputs().
+// The incremental shake-table analysis of the LNEC cross vault (paper Sect. 5, 6.1; Table 4, Figs. 14-18): the
+// vault's structure (its blocks, rigid or meshed, its ties, its components as groups with the joint law of every
+// pair, the monitor points of the test and the slab as the table) fed to the study of any structure (study.hpp).
 
-#include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <filesystem>
-#include <stdexcept>
-#include <fstream>
+#include <cstddef>
 #include <string>
-#include <string_view>
-#include <vector>
+#include <variant>
 
-#include "blockdem/analysis/free_decay.hpp"
-#include "blockdem/analysis/vault_checkpoint.hpp"
-#include "blockdem/analysis/vault_recorders.hpp"
-#include "blockdem/analysis/vault_report.hpp"
+#include "blockdem/analysis/structure.hpp"
+#include "blockdem/analysis/model_file_writer.hpp"
+#include "blockdem/analysis/study.hpp"
 #include "blockdem/analysis/vault_study_options.hpp"
-#include "blockdem/contact/elastic.hpp"
-#include "blockdem/contact/mohr_coulomb.hpp"
-#include "blockdem/contact/softening.hpp"
-#include "blockdem/damping/local.hpp"
-#include "blockdem/damping/mass_proportional.hpp"
-#include "blockdem/damping/maxwell.hpp"
-#include "blockdem/damping/maxwell_fit.hpp"
-#include "blockdem/damping/none.hpp"
-#include "blockdem/damping/rayleigh.hpp"
-#include "blockdem/damping/stiffness_proportional.hpp"
-#include "blockdem/integrate/run.hpp"
-#include "blockdem/integrate/simulation.hpp"
-#include "blockdem/io/atomic_file.hpp"
-#include "blockdem/io/vtk.hpp"
+#include "blockdem/io/json.hpp"
 #include "blockdem/models/cross_vault.hpp"
-#include "blockdem/motion/base_motion.hpp"
-#include "blockdem/motion/integration.hpp"
-#include "blockdem/motion/processing.hpp"
-#include "blockdem/motion/synthetic.hpp"
-#include "blockdem/motion/truncation.hpp"
-#include "blockdem/motion/wavelet_truncation.hpp"
 
 namespace blockdem::analysis {
 
-/// The simulation of the vault under damping policy D: the three joint laws of the paper (Sect. 3.1-3.2).
+/// The simulation of the vault under damping policy D: the study's (the three joint laws of the paper).
 template <class D>
-using VaultSimulation = Simulation<D, contact::ElastoSoftening, contact::MohrCoulomb, contact::Elastic>;
+using VaultSimulation = StudySimulation<D>;
+using VaultStudyResult = StudyResult;
 
 namespace detail {
-
-inline std::string level_label(double level) { return models::detail::num(level); }
-
-/// The record as the options ask for it: read or synthetic, baseline corrected as a whole (a filter on a short cut
-/// would ring at its ends), then cut to the window or to the wavelet pulse support.
-inline motion::Record input_record(const VaultStudyOptions& o, std::string& cut_note) {
-  motion::Record record = o.record ? *o.record
-                          : o.record_path.empty() ? motion::synthetic_aqa75()
-                                                  : motion::read_record(o.record_path, o.read);
-  record.validate("input record");
-  record = motion::correct_baseline(std::move(record), motion::parse_baseline(o.baseline));
-  if (o.truncation == Truncation::wavelet) {
-    const auto w = motion::wavelet_truncation(record);
-    char note[128];
-    std::snprintf(note, sizeof note, "wavelet truncation (Sect. 6.1.2): pulse support %.3f-%.3f s", w.truncation.start, w.truncation.end);
-    cut_note = note;
-    return w.truncation.record;
-  }
-  if (o.window_start >= record.end_time() || o.window_end > record.end_time() + 0.5 * record.dt)
-    throw InvalidArgument("cross vault study: --window " + models::detail::num(o.window_start) + " " +
-                          models::detail::num(o.window_end) + " s lies outside the record '" + record.name + "', which spans [" +
-                          models::detail::num(record.start_time) + ", " + models::detail::num(record.end_time()) + "] s");
-  cut_note = "window " + models::detail::num(o.window_start) + "-" + models::detail::num(o.window_end) + " s";
-  return motion::truncate_window(record, o.window_start, o.window_end).record;
-}
 
 /// Whether the options make block i of the vault deformable: every free block (deformable), every free block but the
 /// steel frame (mixed, Sect. 6.1.1), none (rigid).
@@ -103,480 +51,78 @@ inline model::Model vault_model(const models::CrossVault& v, const VaultStudyOpt
   return m;
 }
 
-template <class Sim>
-typename Sim::PropertyFunction vault_properties(const models::CrossVault& v) {
-  return [&v](int a, int b) {
-    return std::visit([](const auto& p) { return typename Sim::Properties(p); }, models::joint_law(v.joint(a, b)));
-  };
-}
+}  // namespace detail
 
-/// Static equilibrium under gravity with local damping (DESIGN §4): static, so every block takes the mass that gives
-/// one common timestep (3DEC's static mass scaling); the real masses are back when it returns.
-template <class Settle>
-void settle(Settle& sim, double dt, const VaultStudyOptions& o, SettlingResult& out) {
-  using clock = std::chrono::steady_clock;
-  const auto t0 = clock::now();
-  sim.scale_masses_for_statics(dt);
-  out.dt = sim.timestep();
-  auto last = t0;
-  for (long long n = 0; n < o.settle_max_steps; ++n) {
-    sim.step();
-    ++out.steps;
-    if ((n & 1023) == 1023 && o.poll) o.poll();
-    if (n % 10 != 9) continue;
-    out.unbalanced_ratio = sim.unbalanced_force_ratio();
-    if (out.unbalanced_ratio <= o.settle_tolerance) {
-      out.converged = true;
+/// The vault as a structure: its components are its groups (joint tag = component index), the joint of every pair
+/// of components (Table 1-2) is the law table's, OC1-OC4 and the accelerometers are its monitor points, the slab
+/// is the table.
+inline Structure vault_structure(const models::CrossVault& v, const VaultStudyOptions& o) {
+  Structure s;
+  s.name = "cross vault";
+  s.model = detail::vault_model(v, o);
+  s.laws = LawTable(std::vector<std::string>(models::component_names.begin(), models::component_names.end()));
+  for (const auto a : models::all_components)
+    for (const auto b : models::all_components)
+      if (models::index(a) <= models::index(b) && v.joint(a, b).normal_stiffness > 0)
+        s.laws.set(models::index(a), models::index(b), models::joint_law(v.joint(a, b)));
+  s.monitors = v.monitor_points;
+  for (std::size_t i = 0; i < v.blocks.size(); ++i)
+    if (v.blocks[i].component == models::Component::slab) {
+      s.table = i;
       break;
     }
-    if (interrupted()) break;
-    if (o.progress && clock::now() - last > std::chrono::seconds(1)) {
-      last = clock::now();
-      std::fprintf(stderr, "\rsettling: step %lld, unbalanced force ratio %.2e (tolerance %.0e)   ", out.steps, out.unbalanced_ratio,
-                   o.settle_tolerance);
-      std::fflush(stderr);
-    }
+  s.report = {{"kinematics", io::JsonObject::quoted(name(o.kinematics))},
+              {"residual_compressive_strength_pa", io::JsonObject::number(o.vault.residual_compressive_strength)}};
+  return s;
+}
+inline Structure vault_structure(const VaultStudyOptions& o) { return vault_structure(models::make_cross_vault(o.vault), o); }
+
+/// The vault of the options as a model file describes it (model_file_writer.hpp): the generator's blocks with their
+/// world shapes and materials, meshed as the kinematics say, its ties, joints, monitor points and table. Reading the
+/// file back gives vault_structure(o) bit for bit.
+inline ModelDescription vault_description(const VaultStudyOptions& o) {
+  const auto v = models::make_cross_vault(o.vault);
+  const Structure s = vault_structure(v, o);
+  ModelDescription d;
+  d.name = "LNEC cross vault (paper Sect. 2)";
+  d.gravity = s.model.gravity;
+  for (const auto& m : v.materials) d.materials.push_back({m.name, m.density, m.youngs_modulus, m.poisson_ratio});
+  d.laws = s.laws;
+  for (const auto& b : v.blocks) {
+    const bool steel = b.component == models::Component::steel_frame || b.component == models::Component::movable_pier;
+    d.blocks.push_back({b.name, models::index(b.component), b.material, b.motion, b.shape,
+                        detail::meshed(o, b) ? (steel ? o.steel_max_edge : o.max_edge) : 0.0});
   }
-  sim.restore_real_masses();
-  out.wall_seconds = std::chrono::duration<double>(clock::now() - t0).count();
-  if (o.progress)
-    std::fprintf(stderr, "\rsettling: %lld steps, unbalanced force ratio %.2e, %.1f s%s\n", out.steps, out.unbalanced_ratio,
-                 out.wall_seconds, out.converged ? "" : " (NOT converged)");
-}
-
-/// Throws RunawayError if a monitor point's last sample is not finite or farther than o.runaway_displacement from
-/// where it settled (relative to the table).
-template <class History>
-void check_runaway(const History& history, const VaultStudyOptions& o, const std::string& level, double t_in_level) {
-  for (std::size_t p = 0; p < history.points(); ++p) {
-    const double d = history.last_displacement(p).norm();
-    if (std::isfinite(d) && d <= o.runaway_displacement) continue;
-    const auto names = history.names();
-    char text[320];
-    if (!std::isfinite(d))
-      std::snprintf(text, sizeof text, "level %s %%: the run diverged %.4f s into the level (the displacement of %s is not finite)",
-                    level.c_str(), t_in_level, names[p].c_str());
-    else
-      std::snprintf(text, sizeof text, "level %s %%: %s moved %.3g m from where it settled, %.4f s into the level, beyond "
-                    "--runaway-displacement %.3g m: the run diverged or the block fell off the slab", level.c_str(), names[p].c_str(), d,
-                    t_in_level, o.runaway_displacement);
-    throw RunawayError(text);
+  for (const auto& t : v.ties) {
+    ModelDescription::Tie tie;
+    tie.name = t.name;
+    tie.block[0] = t.block_a;
+    tie.block[1] = t.block_b;
+    tie.point[0] = t.end_a;
+    tie.point[1] = t.end_b;
+    tie.area = t.area;
+    tie.young = t.youngs_modulus;
+    tie.density = t.density;
+    tie.pretension = t.pretension;
+    d.ties.push_back(tie);
   }
+  d.monitors = s.monitors;
+  d.table = s.table;
+  d.contact_tolerance = s.contacts.tolerance;
+  return d;
 }
 
-/// Fills `collapse` when a monitor point's last sample is farther than o.collapse_displacement from where it settled
-/// (relative to the table): the vault has collapsed.
-template <class History>
-void check_collapse(const History& history, const VaultStudyOptions& o, double t_in_level, LevelResult::Collapse& collapse) {
-  for (std::size_t p = 0; p < history.points() && !collapse.collapsed; ++p) {
-    const double d = history.last_displacement(p).norm();
-    if (!(d > o.collapse_displacement)) continue;
-    collapse = {true, history.names()[p], t_in_level, d};
-  }
-}
-
-}  // namespace detail
-
-/// Calls f(policy) with the damping policy of the options (the Maxwell branches fitted here, Sect. 4.2), and
-/// describes it in `description`.
-template <class F>
-decltype(auto) with_damping_policy(const VaultStudyOptions& o, std::string& description, F&& f) {
-  const double z = o.scheme_zeta();
-  char text[160];
-  switch (o.damping) {
-    case DampingScheme::none:
-      description = "none (noDamp: hysteretic damping of the joints only)";
-      return f(damping::None{});
-    case DampingScheme::mass: {
-      std::snprintf(text, sizeof text, "mass-proportional (MassProp), %.3g %% at %.4g Hz", 100 * z, o.frequency_hz);
-      description = text;
-      return f(damping::MassProportional::from_damping_ratio(z, o.frequency_hz));  // eq. 10
-    }
-    case DampingScheme::stiffness: {
-      std::snprintf(text, sizeof text, "stiffness-proportional, %.3g %% at %.4g Hz", 100 * z, o.frequency_hz);
-      description = text;
-      return f(damping::StiffnessProportional::from_damping_ratio(z, o.frequency_hz));  // eq. 10
-    }
-    case DampingScheme::rayleigh: {
-      std::snprintf(text, sizeof text, "Rayleigh, %.3g %% at %.4g and %.4g Hz", 100 * z, o.lower_hz, o.upper_hz);
-      description = text;
-      return f(damping::Rayleigh::from_two_frequencies(z, o.lower_hz, z, o.upper_hz));  // eq. 10
-    }
-    case DampingScheme::maxwell: break;
-  }
-  damping::MaxwellFitOptions fit_options;
-  fit_options.damping_ratio = z;
-  fit_options.lower_hz = o.lower_hz;
-  fit_options.upper_hz = o.upper_hz;
-  fit_options.branches = o.branches;
-  const auto fit = damping::fit_maxwell(fit_options);
-  if (!fit.converged)
-    throw InvalidArgument("cross vault study: the Maxwell fit of " + models::detail::num(100 * z) + " % over " +
-                          models::detail::num(o.lower_hz) + "-" + models::detail::num(o.upper_hz) + " Hz with " +
-                          std::to_string(o.branches) + " branches did not converge");
-  std::snprintf(text, sizeof text, "Maxwell, %.3g %% over %.4g-%.4g Hz, %d branches (band error %+.2f %% / %+.2f %%)", 100 * z,
-                o.lower_hz, o.upper_hz, o.branches, 100 * fit.rel_error_min, 100 * fit.rel_error_max);
-  description = text;
-  auto with = [&]<int N>(std::integral_constant<int, N>) -> decltype(auto) {
-    std::array<damping::MaxwellBranch, N> branches{};
-    std::copy_n(fit.branch.begin(), N, branches.begin());
-    return f(damping::Maxwell<N>(branches));
-  };
-  switch (o.branches) {
-    case 1: return with(std::integral_constant<int, 1>{});
-    case 2: return with(std::integral_constant<int, 2>{});
-    case 3: return with(std::integral_constant<int, 3>{});
-    default: return with(std::integral_constant<int, 4>{});
-  }
-}
-
-/// What lets blocks of the vault pass through each other, for a run guard's stop on an overlap.
-namespace detail {
-inline std::string pass_through_hint(std::string_view stop, const VaultStudyOptions& o) {
-  if (stop.find(" overlaps by ") == std::string_view::npos) return "";
-  std::string hint;
-  if (o.contacts == model::ContactKinds::faces)
-    hint += "; with --contacts faces, blocks that turn more than 20 degrees lose their contacts (--contacts general keeps them)";
-  if (o.vault.residual_compressive_strength == 0)
-    hint += "; a joint crushed through carries nothing with --residual-compressive-strength 0 (the paper's law): blocks "
-            "that pound past the paper's levels then pass through each other";
-  return hint;
-}
-}  // namespace detail
-
-/// The vault of the options, settled under gravity and handed to f(sim, model, vault, table_block, policy) as a
-/// simulation with the options' damping policy at the dynamic timestep (after partial density scaling). Fills the
-/// model, settling, damping and timestep parts of `r`; with o.out_dir set, writes report.json once settled. Returns
-/// without calling f if interrupted while settling. built(model, vault) sees the model as built, before settling.
-/// With o.resume set, f receives the simulation unsettled and unscaled, for the caller to load a checkpoint into.
-template <class F, class Built = void (*)(const model::Model&, const models::CrossVault&)>
-void with_settled_vault(const VaultStudyOptions& o, VaultStudyResult& r, F&& f,
-                        Built built = [](const model::Model&, const models::CrossVault&) {}) {
-  const bool resuming = !o.resume.empty();
-  const auto vault = models::make_cross_vault(o.vault);
-  model::Model model = detail::vault_model(vault, o);
-  built(model, vault);
-  std::size_t table = 0;
-  while (table < vault.blocks.size() && vault.blocks[table].component != models::Component::slab) ++table;
-  r.model.blocks = model.bodies.size();
-  r.model.deformable_blocks = model.deformable.blocks.size();
-  r.model.nodes = model.deformable.nodes.size();
-  r.model.tetrahedra = model.deformable.tetrahedra.size();
-  r.model.ties = model.deformable.trusses.size();
-  r.model.free_mass = model.total_mass();
-
-  std::string description;
-  with_damping_policy(o, description, [&]<class D>(D policy) {
-    r.damping.description = description;
-    r.damping.scheme = name(o.damping);
-    using Settle = VaultSimulation<damping::Local>;
-    using Dynamic = VaultSimulation<D>;
-    model::ContactSettings contacts;
-    contacts.kinds = o.contacts;
-    Settle settle(model, damping::Local{}, detail::vault_properties<Settle>(vault), contacts);
-    r.model.contact_points = settle.contact_points();
-    // The timestep of the dynamic run, chosen before settling so that a bad target is refused at once.
-    auto factor = [&](double omega) { return policy.timestep_factor(omega); };
-    const double free_mass = r.model.free_mass;
-    {
-      // The dynamic policy multiplies 2 / omega_max (eq. 1) by its factor at omega_max (eq. 11, eq. 20).
-      const double omega_max = settle.omega_max();
-      r.timestep.damping_factor = factor(omega_max);
-      r.timestep.critical_unscaled = 2.0 / omega_max * r.timestep.damping_factor;
-    }
-    const double unscaled = settle.safety_factor() * r.timestep.critical_unscaled;
-    double target = o.target_dt;
-    if (target == 0) {
-      double lo = unscaled, hi = 1e-3;
-      for (int it = 0; it < 60; ++it) {
-        const double mid = std::sqrt(lo * hi);
-        (100 * settle.density_scaling_mass(mid, factor) / free_mass <= o.default_mass_increase_percent ? lo : hi) = mid;
-      }
-      target = lo;
-    }
-    if (target > unscaled) {
-      const double percent = 100 * settle.density_scaling_mass(target, factor) / free_mass;
-      if (percent > o.max_mass_increase_percent)
-        throw InvalidArgument("cross vault study: --target-dt " + models::detail::num(target) + " s needs " +
-                              models::detail::num(percent) + " % more mass by density scaling, above --max-mass-increase " +
-                              models::detail::num(o.max_mass_increase_percent) + " %; this model runs unscaled at " +
-                              models::detail::num(unscaled) + " s");
-    }
-
-    if (!resuming) {
-      detail::settle(settle, std::max(unscaled, target), o, r.settling);
-      const auto census = damage_census(settle, model);
-      r.settling.damaged_joints = census.total.damaged;
-      r.settling.cracked_joints = census.total.cracked;
-      r.settling.crushed_joints = census.total.crushed;
-      if (!o.out_dir.empty()) detail::write_report(o.out_dir, r);
-      if (interrupted()) {
-        r.interrupted = true;
-        return;
-      }
-    }
-
-    Dynamic sim(settle, policy);
-    if (!resuming && target < sim.timestep()) sim.set_timestep(target);  // a --target-dt below the unscaled one: run at it
-    if (!resuming && target > sim.timestep()) {
-      const std::vector<double> real_mass = model.bodies.mass, real_node_mass = model.deformable.nodes.mass;
-      r.timestep.scaling = sim.scale_density_to(target);
-      for (std::size_t i = 0; i < model.bodies.size(); ++i)
-        if (!model.deformable.is_deformable(i) && model.bodies.mass[i] > real_mass[i]) {
-          auto& where = r.timestep.added_by_component[models::index(vault.blocks[i].component)];
-          where.blocks += 1;
-          where.added_mass += model.bodies.mass[i] - real_mass[i];
-        }
-      const auto& nd = model.deformable.nodes;
-      for (std::size_t i = 0; i < nd.size(); ++i)
-        if (nd.mass[i] > real_node_mass[i]) {
-          auto& where = r.timestep.added_by_component[models::index(vault.blocks[nd.block[i]].component)];
-          where.nodes += 1;
-          where.added_mass += nd.mass[i] - real_node_mass[i];
-        }
-    }
-    r.timestep.dt = sim.timestep();
-    r.timestep.critical = sim.critical_timestep();
-
-    f(sim, model, vault, table, policy);
-  });
-}
-
-/// The settled vault's first natural frequency and damping ratio under the options' damping policy: a short table
-/// pulse along the axis (one sine cycle of velocity, amplitude `pulse_velocity` m/s over `pulse_duration` s, small
-/// enough for the joints to stay elastic), then free decay for `duration` s, analysed at OC1 (analyse_first_mode).
-/// Runs on its own settled model: the study's state is not touched.
-inline FreeVibrationResult measure_free_vibration(VaultStudyOptions o, double duration = 1.0, double pulse_velocity = 1e-3,
+/// The settled vault's first natural frequency and damping ratio at OC1 (measure_free_vibration of study.hpp).
+inline FreeVibrationResult measure_free_vibration(const VaultStudyOptions& o, double duration = 1.0, double pulse_velocity = 1e-3,
                                                   double pulse_duration = 0.05) {
-  o.out_dir.clear();
-  o.resume.clear();
-  o.free_vibration = false;
-  VaultStudyResult scratch;
-  FreeVibrationResult fv;
-  fv.pulse_velocity = pulse_velocity;
-  fv.pulse_duration = pulse_duration;
-  with_settled_vault(o, scratch, [&](auto& sim, model::Model& model, const models::CrossVault& vault, std::size_t table,
-                                     const auto& policy) {
-    std::size_t oc1 = 0;
-    while (oc1 + 1 < vault.monitor_points.size() && vault.monitor_points[oc1].name != "OC1") ++oc1;
-    const auto& point = vault.monitor_points[oc1];
-    const auto& b = model.bodies;
-    const Vec3 body_point = b.rotation[point.block].transpose() * (point.position - b.position[point.block]);
-    const bool on_node = model.deformable.is_deformable(point.block);  // then OC1 follows its nearest node
-    const std::size_t node = on_node ? model.nearest_node(point.block, point.position) : 0;
-    auto where = [&] { return on_node ? model.deformable.nodes.position[node] : b.to_world(point.block, body_point); };
-    const Vec3 reference = where(), table_reference = b.position[table];
-    const Vec3 axis = o.axis == 'x' ? Vec3::UnitX() : Vec3::UnitY();
-    const double t0 = sim.time();
-    model.base_motion = motion::BaseMotion(motion::SineVelocity{pulse_velocity, pulse_duration, 1, axis, t0});
-    std::vector<double> time, response;
-    const auto every = std::max<long long>(1, std::llround(2e-4 / sim.timestep()));  // uniform sampling for the filter
-    const double interval = static_cast<double>(every) * sim.timestep();
-    for (long long n = 1; sim.time() < t0 + pulse_duration + duration && !interrupted(); ++n) {
-      sim.step();
-      if (n % every != 0 || sim.time() < t0 + pulse_duration) continue;
-      const Vec3 u = where() - reference - (b.position[table] - table_reference);
-      time.push_back(sim.time() - t0);
-      response.push_back(u.dot(axis));
-    }
-    model.base_motion = motion::BaseMotion::at_rest();
-    fv.time = time;
-    fv.response = response;
-    try {
-      fv.decay = analyse_first_mode(response, interval);
-      fv.measured = true;
-    } catch (const InvalidArgument& e) {
-      fv.note = e.what();
-      return;
-    }
-    const double omega = 2 * pi * fv.decay.frequency_hz;
-    if constexpr (requires { policy.damping_ratio(omega); }) fv.expected_damping_ratio = policy.damping_ratio(omega);  // eq. 10, eq. 19
-  });
-  return fv;
+  o.validate();
+  return measure_free_vibration(vault_structure(o), o, duration, pulse_velocity, pulse_duration);
 }
 
-/// Runs the study. Writes into o.out_dir (if set) as it goes, with a checkpoint (vault_checkpoint.hpp) at the end of
-/// each level, every o.checkpoint_minutes and when it stops early; with o.resume set, continues from a checkpoint
-/// bitwise as the run that wrote it would have gone on. Stops cleanly after the current step on SIGINT/SIGTERM once
-/// stop_on_interrupt() was called, or after o.stop_after_steps dynamic steps (the result says so, and what was
-/// written stays complete).
-inline VaultStudyResult run_vault_study(const VaultStudyOptions& o) {
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
+/// Runs the vault study (run_study of study.hpp on the vault's structure).
+inline StudyResult run_vault_study(const VaultStudyOptions& o) {
   o.validate();
-  VaultStudyResult r;
-  r.options = o;
-  const bool resuming = !o.resume.empty();
-  // A checkpoint that cannot be used is refused before any work: its header now, its model and checksum below.
-  if (resuming) (void)io::read_checkpoint_header(o.resume);
-  if (!o.out_dir.empty()) detail::prepare_output_folder(o.out_dir, resuming);
-
-  const motion::Record cut = detail::input_record(o, r.input.cut);
-  r.input.name = cut.name;
-  r.input.synthetic = cut.synthetic;
-  r.input.duration = cut.duration();
-  r.input.baseline = motion::to_string(motion::parse_baseline(o.baseline));
-  {
-    const auto peaks = motion::peak_values(cut);
-    r.input.pga = peaks.pga;
-    r.input.pgv = peaks.pgv;
-    r.input.pgd = peaks.pgd;
-  }
-  if (o.free_vibration && !resuming) {
-    r.free_vibration = measure_free_vibration(o);
-    if (!o.out_dir.empty()) detail::write_free_vibration(o.out_dir, r.free_vibration);
-  }
-
-  std::uint64_t hash = 0;
-  auto built = [&](const model::Model& model, const models::CrossVault& vault) { hash = study_hash(o, model, vault, cut); };
-  with_settled_vault(o, r, [&](auto& sim, model::Model& model, const models::CrossVault& vault, std::size_t table, const auto&) {
-    sim.set_run_guard(RunGuard{o.max_speed});
-    MonitorHistory history(model, vault.monitor_points, table);
-    r.monitor_points = history.names();
-    SnapshotSeries snapshots(o.out_dir);
-    std::vector<Vec3> settled_position = model.bodies.position;
-    const Vec3 axis = o.axis == 'x' ? Vec3::UnitX() : Vec3::UnitY();
-    StudyCursor cursor;
-    auto history_path = [&](const std::string& label) {
-      return o.out_dir.empty() ? std::string() : o.out_dir + "/history_" + label + ".csv";
-    };
-    const std::string checkpoint = o.out_dir.empty() ? std::string() : o.out_dir + "/" + study_checkpoint_file;
-    auto save = [&] {
-      if (checkpoint.empty()) return;
-      std::string what = "cross vault study, ";
-      what += r.damping.scheme;
-      if (cursor.level < o.levels.size()) {
-        what += cursor.in_level ? "in level " : "before level ";
-        what += detail::level_label(o.levels[cursor.level]) + " %";
-      } else {
-        what += "after the last level";
-      }
-      what += ", t = ";
-      what += models::detail::num(sim.time());
-      what += " s";
-      io::save_checkpoint(checkpoint, hash, what, [&](io::CheckpointWriter& w) {
-        detail::visit_study_state(w, r, cursor, sim, history, snapshots, settled_position);
-      });
-    };
-    if (resuming) {
-      io::load_checkpoint(o.resume, hash, [&](io::CheckpointReader& in) {
-        detail::visit_study_state(in, r, cursor, sim, history, snapshots, settled_position);
-      });
-      if (cursor.in_level) history.resume_file(history_path(detail::level_label(o.levels[cursor.level])));
-      if (o.progress)
-        std::fprintf(stderr, "resuming from '%s' at t = %.4f s (%s level %s %%)\n", o.resume.c_str(), sim.time(),
-                     cursor.in_level ? "in" : "before", cursor.level < o.levels.size() ? detail::level_label(o.levels[cursor.level]).c_str() : "-");
-    }
-    auto last_checkpoint = clock::now();
-    for (; cursor.level < o.levels.size(); ++cursor.level) {
-      if (!r.levels.empty() && r.levels.back().collapse.collapsed) break;  // resumed after the collapse: nothing left
-      const double level = o.levels[cursor.level];
-      const std::string label = detail::level_label(level);
-      LevelResult L;
-      L.level = level;
-      if (!cursor.in_level) {
-        cursor.level_start = sim.time();
-        cursor.start_velocity = cursor.table_velocity;  // each level starts where the last left the table
-      }
-      const motion::RecordMotion table_motion(motion::scale(cut, level / o.record_level), {}, axis, cursor.level_start,
-                                              cursor.start_velocity);
-      model.base_motion = motion::BaseMotion(table_motion);
-      L.final_table_velocity = table_motion.final_velocity();
-      L.duration = table_motion.duration() + o.rest;
-      auto record = [&] {
-        if (sim.time() >= cursor.next_sample - 0.5 * sim.timestep()) {
-          history.sample(model, sim.time());
-          cursor.next_sample += o.history_dt;
-          detail::check_runaway(history, o, label, sim.time() - cursor.level_start);
-          detail::check_collapse(history, o, sim.time() - cursor.level_start, L.collapse);
-        }
-        if (o.snapshots_every > 0 && !o.out_dir.empty() && sim.time() >= cursor.next_snapshot - 0.5 * sim.timestep()) {
-          snapshots.write(label, sim.time(), model, vault, settled_position);
-          cursor.next_snapshot += o.snapshots_every;
-        }
-      };
-      if (!cursor.in_level) {
-        history.begin_level(model, sim.time(), history_path(label));
-        cursor.energy_at_level_start = sim.energy();
-        cursor.next_sample = cursor.next_snapshot = sim.time();
-        cursor.level_steps = 0;
-        cursor.level_wall_seconds = 0;
-        cursor.in_level = true;
-        record();
-      }
-      const double wall_before = cursor.level_wall_seconds;
-      const auto run_start = clock::now();
-      auto step = [&] {
-        record();
-        ++cursor.level_steps;
-        ++cursor.dynamic_steps;
-        if ((cursor.level_steps & 1023) == 0 && o.poll) o.poll();
-        if ((cursor.level_steps & 1023) == 0 && o.checkpoint_minutes > 0 &&
-            clock::now() - last_checkpoint > std::chrono::duration<double>(60 * o.checkpoint_minutes)) {
-          cursor.level_wall_seconds = wall_before + std::chrono::duration<double>(clock::now() - run_start).count();
-          save();
-          last_checkpoint = clock::now();
-        }
-        if (L.collapse.collapsed) return false;  // the level ends at the collapse (not an interruption)
-        return o.stop_after_steps == 0 || cursor.dynamic_steps < o.stop_after_steps;
-      };
-      RunOptions run_options;
-      run_options.progress = o.progress;
-      const std::string progress_label = "level " + label + " %";
-      run_options.label = progress_label.c_str();
-      const auto summary = [&] {
-        try {
-          return run_until(sim, cursor.level_start + L.duration, step, run_options);
-        } catch (const RunawayError& e) {
-          history.end_level();  // the history up to the stop is whole: it keeps its name, for the plots
-          if (std::string_view(e.what()).starts_with("level ")) throw;  // check_runaway's, which names it already
-          throw RunawayError("level " + label + " %: " + e.what() + detail::pass_through_hint(e.what(), o));
-        }
-      }();
-      cursor.level_wall_seconds = wall_before + summary.wall_seconds;
-      L.steps = cursor.level_steps;
-      L.wall_seconds = cursor.level_wall_seconds;
-      L.interrupted = summary.interrupted && !L.collapse.collapsed;
-      L.simulated = sim.time() - cursor.level_start;
-      L.peaks = history.peaks();
-      for (std::size_t p = 0; p < history.points(); ++p) L.residual_displacement.push_back(history.last_displacement(p));
-      L.damage = damage_census(sim, model);
-      L.detections = sim.detections();
-      L.detection_seconds = sim.detection_seconds();
-      L.energy = sim.energy();
-      L.energy_at_start = cursor.energy_at_level_start;
-      L.hold = sim.timestep_hold();
-      if (L.interrupted) {
-        save();  // the level stays open in the checkpoint, which holds the finished levels only
-        r.levels.push_back(L);  // the report shows this one as far as it went
-        r.interrupted = true;
-        break;
-      }
-      history.end_level();
-      cursor.table_velocity = table_motion.final_velocity();
-      model.base_motion = motion::BaseMotion::constant(cursor.table_velocity * axis);  // where this level left it
-      cursor.in_level = false;
-      r.levels.push_back(L);
-      if (!o.out_dir.empty()) {
-        detail::write_level_outputs(o.out_dir, label, sim, model, vault, settled_position);
-        detail::write_report(o.out_dir, r);
-        ++cursor.level;
-        save();
-        --cursor.level;
-        last_checkpoint = clock::now();
-      }
-      if (L.collapse.collapsed) {
-        if (o.progress)
-          std::fprintf(stderr, "level %s %%: the vault collapsed %.3f s into the level (%s moved %.3g m, beyond "
-                       "--collapse-displacement %.3g m); no further level runs\n", label.c_str(), L.collapse.time,
-                       L.collapse.point.c_str(), L.collapse.displacement, o.collapse_displacement);
-        break;
-      }
-    }
-  }, built);
-  r.wall_seconds = std::chrono::duration<double>(clock::now() - start).count();
-  if (!o.out_dir.empty()) detail::write_report(o.out_dir, r);
-  return r;
+  return run_study(vault_structure(o), o);
 }
 
 }  // namespace blockdem::analysis

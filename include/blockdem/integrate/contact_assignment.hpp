@@ -57,7 +57,7 @@ class ContactAssignment {
     groups = Groups{};
     // Property sets are kept (property indices stay valid); new ones are appended.
     std::apply([&](auto&... g) { ((g.properties = std::get<std::remove_cvref_t<decltype(g)>>(old).properties), ...); }, groups);
-    const double match = std::max(settings.tolerance, 0.25 * std::sqrt(settings.max_contact_point_area));
+    const double match = std::max(settings.tolerance, 0.25 * std::sqrt(settings.largest_contact_point_area()));
     // Old contacts by block pair, and which of their CPs have been taken over. Energy dissipated at CPs that will
     // not be taken over is kept in the totals.
     std::apply([&](auto&... g) {

@@ -28,6 +28,10 @@ struct ContactView {
   double shear_stress = 0;   // Pa, magnitude
   double damage = 0;    // 0 intact .. 1 failed (laws without damage: 1 once failed); 0 if never bonded
   bool never_bonded = false;  // appeared during the run (contact::never_bonded): a new contact, not a broken joint
+  // How a bonded joint is damaged, by the laws that say it: cracked (opened beyond the tensile strength: secant
+  // unloading) and crushed (closed beyond the compressive hardening limit) by elasto-softening; slipped (at or past
+  // the Coulomb limit) by Mohr-Coulomb, and by elasto-softening for damage neither cracked nor crushed.
+  bool cracked = false, crushed = false, slipped = false;
   std::size_t block_a = 0, block_b = 0;
 };
 
@@ -37,6 +41,14 @@ template <contact::ContactLaw L>
 void set_damage(ContactView& v, const typename L::History& h) {
   v.never_bonded = L::never_bonded(h);
   v.damage = v.never_bonded ? 0.0 : L::damage(h);
+  if (v.never_bonded) return;
+  if constexpr (requires { h.tension_secant; }) {
+    v.cracked = h.tension_secant < 1;
+    v.crushed = h.compression_secant < 1;
+    v.slipped = v.damage > 0 && !v.cracked && !v.crushed;
+  } else if constexpr (requires { h.slipping; }) {
+    v.slipped = h.failed || h.slipping;
+  }
 }
 
 /// Calls f(block_a, block_b, const History&) for every contact point with its joint law's history, or

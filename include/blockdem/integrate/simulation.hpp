@@ -261,6 +261,11 @@ class Simulation {
   }
   const RunGuard& run_guard() const { return guard_; }
 
+  /// Called at every re-detection, before the contacts are detected again (the histories are then at the present
+  /// positions): what output must remember of the contact points about to be dropped or replaced (a study's damage
+  /// memory) is read there. Empty: nothing is called.
+  void set_detection_observer(std::function<void()> observer) { detection_observer_ = std::move(observer); }
+
   /// What holding the timestep against new contacts has done so far (see TimestepHold).
   const TimestepHold& timestep_hold() const { return hold_; }
 
@@ -415,6 +420,7 @@ class Simulation {
       return e.elastic + e.viscous + e.slip;
     };
     const double before = stored();
+    if (detection_observer_) detection_observer_();
     const auto start = std::chrono::steady_clock::now();
     if constexpr (Mixed) {
       move_proxies(*model_);
@@ -564,6 +570,7 @@ class Simulation {
   std::map<std::pair<int, int>, Properties> chosen_properties_;
   PropertyFunction properties_;
   model::ContactSettings settings_;
+  std::function<void()> detection_observer_;
   Groups groups_;
   BlockState blocks_;
   ContactAssignment<Damping, Laws...> assignment_;

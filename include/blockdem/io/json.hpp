@@ -52,6 +52,16 @@ class JsonObject {
     text_ += ']';
     return *this;
   }
+  JsonObject& add(std::string_view key, const std::vector<std::string>& values) {
+    write_key(key);
+    text_ += '[';
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      if (i) text_ += ", ";
+      write_string(values[i]);
+    }
+    text_ += ']';
+    return *this;
+  }
   /// A value that is already JSON (a nested object or array).
   JsonObject& add_raw(std::string_view key, std::string_view json) {
     write_key(key);
@@ -84,6 +94,13 @@ class JsonObject {
   static std::string number(double value) {
     JsonObject o;
     o.write_number(value);
+    return o.text_.substr(1);
+  }
+
+  /// A string as a JSON value, quoted and escaped.
+  static std::string quoted(std::string_view value) {
+    JsonObject o;
+    o.write_string(value);
     return o.text_.substr(1);
   }
 

@@ -45,6 +45,11 @@ struct ContactSettings {
   ContactKinds kinds = ContactKinds::general;
   double tolerance = 1e-3;            ///< m: faces closer than this are in contact; also the largest overlap allowed at the start
   double max_contact_point_area = 0;  ///< m^2: subdivide overlaps so that no CP carries more (0: CPs at the polygon vertices only)
+  /// m^2, per pair of joint tags: a square table of tag_count x tag_count (tags 0 .. tag_count - 1) that replaces
+  /// max_contact_point_area for the joints between blocks of those tags (a model's groups, analysis/structure.hpp).
+  /// Empty: max_contact_point_area everywhere. See contact_point_area().
+  std::vector<double> contact_point_area_by_tag;
+  int tag_count = 0;
   double max_normal_angle = 0.35;     ///< rad: faces tilted more than this from the common plane are not in face-face
                                       ///< contact (20 deg); with general contacts they may be in edge or vertex contact
   double redetection_distance = 0;    ///< m: detect again once a block moved this far (0: half the tolerance)
@@ -56,6 +61,22 @@ struct ContactSettings {
     if (!(max_normal_angle > 0 && max_normal_angle < 1.5)) throw InvalidArgument("contact settings: max normal angle must be in (0, 1.5) rad");
     if (!(redetection_distance >= 0)) throw InvalidArgument("contact settings: redetection distance must be >= 0 m");
     if (redetection_check_interval < 1) throw InvalidArgument("contact settings: redetection check interval must be >= 1 step");
+    if (contact_point_area_by_tag.size() != static_cast<std::size_t>(tag_count) * static_cast<std::size_t>(tag_count))
+      throw InvalidArgument("contact settings: the table of contact-point areas must hold tag_count^2 entries");
+    for (const double a : contact_point_area_by_tag)
+      if (!(a >= 0) || !std::isfinite(a)) throw InvalidArgument("contact settings: contact-point areas must be >= 0 m^2");
+  }
+  /// The largest area a CP may carry on a joint between blocks of joint tags ta and tb, m^2 (0: CPs at the corners
+  /// of the overlap only).
+  double contact_point_area(int ta, int tb) const {
+    if (ta < 0 || tb < 0 || ta >= tag_count || tb >= tag_count) return max_contact_point_area;
+    return contact_point_area_by_tag[static_cast<std::size_t>(ta) * static_cast<std::size_t>(tag_count) + static_cast<std::size_t>(tb)];
+  }
+  /// The largest of them all, m^2.
+  double largest_contact_point_area() const {
+    double largest = max_contact_point_area;
+    for (const double a : contact_point_area_by_tag) largest = std::max(largest, a);
+    return largest;
   }
   double redetection() const { return redetection_distance > 0 ? redetection_distance : 0.5 * tolerance; }
 };
@@ -382,7 +403,7 @@ inline std::vector<ContactCandidate> detect_contacts(const RigidBodies& bodies, 
       const Vec3 na = planes[a].normal[fa], nb = planes[b].normal[fb];
       const Vec3 ca = planes[a].point[fa], cb = planes[b].point[fb];
       const std::size_t first = out.size();
-      for (const auto& [uv, area] : detail::tributary_points(overlap, settings.max_contact_point_area)) {
+      for (const auto& [uv, area] : detail::tributary_points(overlap, settings.contact_point_area(bodies.joint_tag[a], bodies.joint_tag[b]))) {
         const Vec3 p = origin + uv[0] * t1 + uv[1] * t2;
         const double s_a = na.dot(ca - p) / na.dot(n_common);  // p + s n lies on A's face plane
         const double s_b = nb.dot(cb - p) / nb.dot(n_common);

@@ -22,26 +22,24 @@
 #include <Eigen/Core>
 
 #include "blockdem/contact/elastic.hpp"
+#include "blockdem/contact/laws.hpp"
 #include "blockdem/contact/mohr_coulomb.hpp"
 #include "blockdem/contact/softening.hpp"
 #include "blockdem/core/error.hpp"
+#include "blockdem/core/number_text.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/core/units.hpp"
 #include "blockdem/geometry/convex_polyhedron.hpp"
 #include "blockdem/model/contact_detection.hpp"
 #include "blockdem/model/model.hpp"
+#include "blockdem/model/monitor_point.hpp"
 
 namespace blockdem::models {
 
 using Vec2 = Eigen::Vector2d;
 
 namespace detail {
-/// A number for a message: up to 6 significant digits, no trailing zeros.
-inline std::string num(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", value);
-  return buffer;
-}
+using blockdem::num;  // core/number_text.hpp
 }  // namespace detail
 
 /// What a block belongs to; also its joint tag in the rigid model (the contact law is chosen per pair of tags).
@@ -95,7 +93,7 @@ struct JointParameters {
 /// The joint law of the contact library for a joint of the model, for Simulation<Damping, ElastoSoftening,
 /// MohrCoulomb, Elastic>: Softening -> contact::ElastoSoftening (residual friction = peak, no residual tension or
 /// cohesion), MohrCoulombFriction -> contact::MohrCoulomb, ElasticSteel -> contact::Elastic.
-using JointLaw = std::variant<contact::ElastoSoftening::Parameters, contact::MohrCoulomb::Parameters, contact::Elastic::Parameters>;
+using JointLaw = contact::JointLaw;
 inline JointLaw joint_law(const JointParameters& p) {
   switch (p.kind) {
     case JointKind::Softening: {
@@ -291,11 +289,7 @@ struct Tie {
   double mass() const { return density * area * length(); }
 };
 
-struct MonitorPoint {
-  std::string name;
-  Vec3 position;          // m, world
-  std::size_t block = 0;  // the block it is attached to
-};
+using MonitorPoint = model::MonitorPoint;
 
 struct CrossVault {
   CrossVaultOptions options;

@@ -1,16 +1,17 @@
 #pragma once
-// What the vault study records during a level: the monitor points' histories (displacement relative to the table,
+// What a study records during a level: the monitor points' histories (displacement relative to the table,
 // acceleration from centred differences of the velocity, paper Sect. 5.3), streamed to CSV so that the file is
 // readable while the run goes on (as <file>.part, renamed when the level ends or the run guard stops it: a history
-// under its own name is whole, a .part one belongs to a run killed or interrupted in that level), with their peaks; and the census of damaged joints per component (Sect. 5.2).
+// under its own name is whole, a .part one belongs to a run killed or interrupted in that level), with their
+// peaks; and the census of damaged joints per group (the vault's components, Sect. 5.2).
 
 #include <algorithm>
-#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -22,7 +23,7 @@
 #include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/checkpoint.hpp"
 #include "blockdem/model/model.hpp"
-#include "blockdem/models/cross_vault.hpp"
+#include "blockdem/model/monitor_point.hpp"
 
 namespace blockdem::analysis {
 
@@ -47,10 +48,11 @@ struct ChannelPeaks {
 /// Histories of the monitor points over one level. Columns: time (s from the start of the level), then per point
 /// <name>_ux, _uy, _uz (m, relative to the table and to the point's position at the start of the level) and
 /// <name>_ax, _ay, _az (m/s^2, absolute: centred differences of the recorded velocities, one-sided at the ends).
-/// A point on a rigid block moves with the block; a point on a deformable block follows its nearest node.
+/// A point on a rigid block moves with the block; a point on a deformable block follows its nearest node. Without a
+/// table block (a structure on fixed supports) the displacements are absolute.
 class MonitorHistory {
  public:
-  MonitorHistory(const model::Model& model, const std::vector<models::MonitorPoint>& points, std::size_t table_block)
+  MonitorHistory(const model::Model& model, const std::vector<model::MonitorPoint>& points, std::optional<std::size_t> table_block)
       : table_(table_block) {
     const auto& b = model.bodies;
     for (const auto& p : points) {
@@ -70,7 +72,7 @@ class MonitorHistory {
     time0_ = time0;
     reference_.clear();
     for (std::size_t p = 0; p < points(); ++p) reference_.push_back(world(model, p));
-    table_reference_ = model.bodies.position[table_];
+    table_reference_ = table_position(model);
     samples_.clear();
     written_ = 0;
     bytes_ = 0;
@@ -94,7 +96,7 @@ class MonitorHistory {
     const auto& b = model.bodies;
     Sample s;
     s.time = t - time0_;
-    const Vec3 table = b.position[table_] - table_reference_;
+    const Vec3 table = table_position(model) - table_reference_;
     for (std::size_t p = 0; p < points(); ++p) {
       s.displacement.push_back(world(model, p) - reference_[p] - table);
       if (node_[p] >= 0) {
@@ -188,6 +190,8 @@ class MonitorHistory {
     bytes_ += text.size();
   }
 
+  Vec3 table_position(const model::Model& model) const { return table_ ? model.bodies.position[*table_] : Vec3::Zero(); }
+
   Vec3 world(const model::Model& model, std::size_t p) const {
     return node_[p] >= 0 ? model.deformable.nodes.position[static_cast<std::size_t>(node_[p])]
                          : model.bodies.to_world(block_[p], body_point_[p]);
@@ -221,7 +225,7 @@ class MonitorHistory {
     ++written_;
   }
 
-  std::size_t table_;
+  std::optional<std::size_t> table_;
   std::vector<std::string> names_;
   std::vector<std::size_t> block_;
   std::vector<Vec3> body_point_, reference_;
@@ -236,7 +240,7 @@ class MonitorHistory {
   std::string path_;
 };
 
-/// Damaged contact points, counted for each component a CP touches (a CP between vault and infill counts for both).
+/// Damaged contact points, counted for each group a CP touches (a CP between vault and infill counts for both).
 struct DamageCensus {
   struct Counts {
     long long contact_points = 0;
@@ -247,16 +251,28 @@ struct DamageCensus {
     long long new_contacts = 0;  // appeared during the run, never bonded (contact::never_bonded): not counted as damage
     double max_damage = 0;
   };
-  std::array<Counts, models::component_count> by_component{};
+  std::vector<Counts> by_group;  // by joint tag (a structure's groups, the vault's components)
   Counts total;
-  long long loose_blocks = 0;  // free blocks without any contact point: fallen out of the vault, or in flight
+  long long loose_blocks = 0;  // free blocks without any contact point: fallen out of the structure, or in flight
+
+  void save_state(io::CheckpointWriter& w) const { visit_state(*this, w); }
+  void load_state(io::CheckpointReader& r) { visit_state(*this, r); }
+
+ private:
+  template <class Self, class Archive>
+  static void visit_state(Self& s, Archive& ar) {
+    ar("damage by group", s.by_group);
+    ar("damage in all", s.total);
+    ar("loose blocks", s.loose_blocks);
+  }
 };
 
-/// The census of a simulation of the cross vault (joint tags are the components), over the contact points of rigid
-/// and deformable blocks alike.
+/// The census of a simulation whose joint tags are `groups` groups, over the contact points of rigid and deformable
+/// blocks alike.
 template <class Simulation>
-DamageCensus damage_census(const Simulation& sim, const model::Model& model) {
+DamageCensus damage_census(const Simulation& sim, const model::Model& model, std::size_t groups) {
   DamageCensus census;
+  census.by_group.resize(groups);
   std::vector<char> touched(model.bodies.size(), 0);
   sim.visit_contact_histories([&]<class Law>(std::size_t a, std::size_t b, std::type_identity<Law>, const auto& h) {
     touched[a] = touched[b] = 1;
@@ -285,8 +301,8 @@ DamageCensus damage_census(const Simulation& sim, const model::Model& model) {
     };
     const auto ta = static_cast<std::size_t>(model.bodies.joint_tag[a]), tb = static_cast<std::size_t>(model.bodies.joint_tag[b]);
     count(census.total);
-    count(census.by_component[ta]);
-    if (tb != ta) count(census.by_component[tb]);
+    count(census.by_group.at(ta));
+    if (tb != ta) count(census.by_group.at(tb));
   });
   for (std::size_t i = 0; i < touched.size(); ++i) census.loose_blocks += model.bodies.motion[i] == model::Motion::free && !touched[i];
   return census;

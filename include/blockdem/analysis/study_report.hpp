@@ -1,10 +1,11 @@
 #pragma once
-// What a cross-vault study reports (paper Table 4, Sect. 5): the result structs, report.json, the files written at
-// the end of each level (damage and contact points for ParaView, a contact table for the plots) and the snapshots.
-// Every file is written under a temporary name and renamed when complete.
+// What a study reports (paper Table 4, Sect. 5): the result structs, report.json, the files written at the end of
+// each level (damage and contact points for ParaView, a contact table for the plots) and the snapshots. Every file is
+// written under a temporary name and renamed when complete.
 
-#include <array>
+#include <cstddef>
 #include <cstdio>
+#include <limits>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -12,14 +13,15 @@
 #include <system_error>
 #include <vector>
 
+#include "blockdem/analysis/damage_memory.hpp"
 #include "blockdem/analysis/free_decay.hpp"
-#include "blockdem/analysis/vault_recorders.hpp"
-#include "blockdem/analysis/vault_study_options.hpp"
+#include "blockdem/analysis/structure.hpp"
+#include "blockdem/analysis/study_options.hpp"
+#include "blockdem/analysis/study_recorders.hpp"
 #include "blockdem/integrate/simulation.hpp"
 #include "blockdem/io/atomic_file.hpp"
 #include "blockdem/io/json.hpp"
 #include "blockdem/io/vtk.hpp"
-#include "blockdem/models/cross_vault.hpp"
 
 namespace blockdem::analysis {
 
@@ -39,8 +41,8 @@ struct LevelResult {
   TimestepHold hold;                // since the start of the dynamic run, at the end of the level (cumulative)
   long long detections = 0;         // contact detections since the start of the dynamic run (cumulative)
   double detection_seconds = 0;     // wall time in them (s, cumulative; since the run was started or resumed)
-  // The vault collapsed in this level (a monitor point moved --collapse-displacement from where it settled): the
-  // level ended then, the point and the time into the level.
+  // The structure collapsed in this level (a monitor point moved --collapse-displacement from where it settled):
+  // the level ended then, the point and the time into the level.
   struct Collapse {
     bool collapsed = false;
     std::string point;
@@ -86,14 +88,15 @@ struct SettlingResult {
   long long damaged_joints = 0, cracked_joints = 0, crushed_joints = 0;  // contact points, once settled
 };
 
-/// The first mode of the settled vault in free decay (measure_free_vibration).
+/// The first mode of the settled structure in free decay at its first monitor point (measure_free_vibration).
 struct FreeVibrationResult {
   bool measured = false;
   FreeDecay decay;
   double expected_damping_ratio = 0;  // of the damping scheme at the measured frequency (eq. 10, eq. 19)
   double pulse_velocity = 0, pulse_duration = 0;  // m/s, s
   std::string note;                   // why it was not measured
-  std::vector<double> time, response; // s from the pulse, m: OC1 along the axis relative to the table
+  std::string point;                  // the monitor point measured
+  std::vector<double> time, response; // s from the pulse, m: that point along the axis relative to the table
 
   void save_state(io::CheckpointWriter& w) const { visit_state(*this, w); }
   void load_state(io::CheckpointReader& r) { visit_state(*this, r); }
@@ -107,23 +110,41 @@ struct FreeVibrationResult {
     ar("pulse velocity", s.pulse_velocity);
     ar("pulse duration", s.pulse_duration);
     ar("free vibration note", s.note);
+    ar("free vibration point", s.point);
     ar("free vibration times", s.time);
     ar("free vibration response", s.response);
   }
 };
 
-struct VaultStudyResult {
-  VaultStudyOptions options;
+struct StudyResult {
+  StudyOptions options;
   struct {
     std::string name, cut, baseline;
     bool synthetic = false;
     double duration = 0;             // s, of the cut at 100 % of the input
     double pga = 0, pgv = 0, pgd = 0;  // of the corrected cut as given (at --record-level)
   } input;
-  struct {
+  struct ModelSummary {
+    std::string name;                // the structure's
+    std::vector<std::string> groups;
+    std::vector<std::pair<std::string, std::string>> report;  // Structure::report
     std::size_t blocks = 0, contact_points = 0, ties = 0;
     std::size_t deformable_blocks = 0, nodes = 0, tetrahedra = 0;
     double free_mass = 0;  // kg
+
+    // What a checkpoint keeps: the counts (the names come from the structure, which the hash ties to it).
+    void save_state(io::CheckpointWriter& w) const { visit_state(*this, w); }
+    void load_state(io::CheckpointReader& r) { visit_state(*this, r); }
+    template <class Self, class Archive>
+    static void visit_state(Self& s, Archive& ar) {
+      ar("blocks", s.blocks);
+      ar("contact points", s.contact_points);
+      ar("ties", s.ties);
+      ar("deformable blocks", s.deformable_blocks);
+      ar("nodes", s.nodes);
+      ar("tetrahedra", s.tetrahedra);
+      ar("free mass", s.free_mass);
+    }
   } model;
   SettlingResult settling;
   struct {
@@ -133,13 +154,25 @@ struct VaultStudyResult {
     long long blocks = 0, nodes = 0;
     double added_mass = 0;  // kg
   };
-  struct {
+  struct Timestep {
     double critical_unscaled = 0;  // s, eq. 1-3 with the damping factor, before density scaling
     double damping_factor = 1;     // eq. 11 / eq. 20 at omega_max
     double critical = 0;           // s, after density scaling
     double dt = 0;                 // s, the timestep of the dynamic run
     DensityScaling scaling;
-    std::array<AddedMass, models::component_count> added_by_component{};
+    std::vector<AddedMass> added_by_group;  // by the structure's groups
+
+    void save_state(io::CheckpointWriter& w) const { visit_state(*this, w); }
+    void load_state(io::CheckpointReader& r) { visit_state(*this, r); }
+    template <class Self, class Archive>
+    static void visit_state(Self& s, Archive& ar) {
+      ar("critical timestep unscaled", s.critical_unscaled);
+      ar("damping factor", s.damping_factor);
+      ar("critical timestep", s.critical);
+      ar("timestep", s.dt);
+      ar("density scaling", s.scaling);
+      ar("added mass by group", s.added_by_group);
+    }
   } timestep;
   FreeVibrationResult free_vibration;       // if options.free_vibration
   std::vector<std::string> monitor_points;  // names, in the order of the histories' columns
@@ -149,13 +182,13 @@ struct VaultStudyResult {
 };
 
 /// The paper's Table 4 for one run: dynamic timestep, minutes per level, total hours.
-inline std::string table4(const VaultStudyResult& r) {
+inline std::string table4(const StudyResult& r) {
   std::string s;
   char line[256];
   std::snprintf(line, sizeof line, "%-10s %-14s", "Model", "dt [s]");
   s += line;
   for (const auto& L : r.levels) {
-    std::string head = models::detail::num(L.level);
+    std::string head = num(L.level);
     head += " % [min]";
     std::snprintf(line, sizeof line, " %12s", head.c_str());
     s += line;
@@ -208,7 +241,7 @@ inline io::JsonObject census_json(const DamageCensus::Counts& c) {
   return j;
 }
 
-inline std::string report_json(const VaultStudyResult& r) {
+inline std::string report_json(const StudyResult& r) {
   using io::JsonObject;
   const auto& o = r.options;
   JsonObject input, model, settling, damping, timestep, table;
@@ -216,9 +249,10 @@ inline std::string report_json(const VaultStudyResult& r) {
       .add("cut", r.input.cut).add("duration_s", r.input.duration).add("baseline", r.input.baseline)
       .add("axis", std::string(1, o.axis)).add("pga_m_s2", r.input.pga).add("pgv_m_s", r.input.pgv).add("pgd_m", r.input.pgd);
   if (r.input.synthetic) input.add("note", "the built-in synthetic AQA75 stand-in, NOT the AQA recording");
-  model.add("kinematics", name(o.kinematics))
-      .add("contacts", o.contacts == model::ContactKinds::general ? "general" : "faces")
-      .add("residual_compressive_strength_pa", o.vault.residual_compressive_strength).add("blocks", static_cast<long long>(r.model.blocks))
+  model.add("name", r.model.name);
+  for (const auto& [key, value] : r.model.report) model.add_raw(key, value);
+  model.add("contacts", o.contacts == model::ContactKinds::general ? "general" : "faces")
+      .add("groups", r.model.groups).add("blocks", static_cast<long long>(r.model.blocks))
       .add("deformable_blocks", static_cast<long long>(r.model.deformable_blocks))
       .add("nodes", static_cast<long long>(r.model.nodes)).add("tetrahedra", static_cast<long long>(r.model.tetrahedra))
       .add("contact_points", static_cast<long long>(r.model.contact_points)).add("ties", static_cast<long long>(r.model.ties))
@@ -230,12 +264,12 @@ inline std::string report_json(const VaultStudyResult& r) {
       .add("crushed_contact_points", r.settling.crushed_joints);
   damping.add("scheme", r.damping.scheme).add("description", r.damping.description);
   JsonObject where;
-  for (const auto c : models::all_components) {
-    const auto& a = r.timestep.added_by_component[models::index(c)];
+  for (std::size_t g = 0; g < r.timestep.added_by_group.size() && g < r.model.groups.size(); ++g) {
+    const auto& a = r.timestep.added_by_group[g];
     if (a.blocks == 0 && a.nodes == 0) continue;
     JsonObject w;
     w.add("blocks", a.blocks).add("nodes", a.nodes).add("added_mass_kg", a.added_mass);
-    where.add(models::name(c), w);
+    where.add(r.model.groups[g], w);
   }
   const auto& s = r.timestep.scaling;
   timestep.add("critical_unscaled_s", r.timestep.critical_unscaled).add("damping_factor", r.timestep.damping_factor)
@@ -264,7 +298,8 @@ inline std::string report_json(const VaultStudyResult& r) {
       residual.add_raw(r.monitor_points[p], vector);
     }
     damage.add("total", census_json(L.damage.total)).add("loose_blocks", L.damage.loose_blocks);
-    for (const auto c : models::all_components) damage.add(models::name(c), census_json(L.damage.by_component[models::index(c)]));
+    for (std::size_t g = 0; g < L.damage.by_group.size() && g < r.model.groups.size(); ++g)
+      damage.add(r.model.groups[g], census_json(L.damage.by_group[g]));
     EnergyReport delta = L.energy;
     delta.gravity_work -= L.energy_at_start.gravity_work;
     delta.base_work -= L.energy_at_start.base_work;
@@ -297,7 +332,7 @@ inline std::string report_json(const VaultStudyResult& r) {
   table.add("model", r.damping.scheme).add("dynamic_timestep_s", r.timestep.dt).add("minutes_per_level", minutes)
       .add("total_hours", total / 3600);
   JsonObject out;
-  out.add("program", "blockdem cross_vault run").add("input", input).add("model", model).add("settling", settling);
+  out.add("program", o.program).add("input", input).add("model", model).add("monitor_points", r.monitor_points).add("settling", settling);
   if (o.free_vibration) {
     const auto& f = r.free_vibration;
     JsonObject j;
@@ -316,10 +351,10 @@ inline std::string report_json(const VaultStudyResult& r) {
   return out.str();
 }
 
-/// free_vibration.csv: the OC1 response of measure_free_vibration.
+/// free_vibration.csv: the response of measure_free_vibration at its monitor point.
 inline void write_free_vibration(const std::string& dir, const FreeVibrationResult& f) {
   io::write_atomically(dir + "/free_vibration.csv", [&](std::ostream& out) {
-    out << "time,OC1_u\n";
+    out << "time," << f.point << "_u\n";
     char line[64];
     for (std::size_t i = 0; i < f.time.size(); ++i) {
       std::snprintf(line, sizeof line, "%.6f,%.9g\n", f.time[i], f.response[i]);
@@ -328,54 +363,107 @@ inline void write_free_vibration(const std::string& dir, const FreeVibrationResu
   });
 }
 
-inline void write_report(const std::string& dir, const VaultStudyResult& r) {
+inline void write_report(const std::string& dir, const StudyResult& r) {
   const std::string text = report_json(r) + "\n";
   io::write_atomically(dir + "/report.json", [&](std::ostream& out) { out << text; });
 }
 
-inline io::BlockFields block_fields(const model::Model& model, const models::CrossVault& vault, const std::vector<Vec3>& reference) {
+/// The blocks' fields for ParaView: "component" (the index of the block's group: the vault's component) and
+/// "displacement" (m, since `reference`, relative to the table: what the structure did, not where the table took it).
+inline io::BlockFields block_fields(const model::Model& model, const Structure& structure, const std::vector<Vec3>& reference) {
   io::BlockFields fields;
   auto& component = fields["component"];
   auto& displacement = fields["displacement"];
-  // Relative to the table (the slab), as the histories: what the structure did, not where the table took it.
-  Vec3 table = Vec3::Zero();
-  for (std::size_t i = 0; i < model.bodies.size(); ++i)
-    if (vault.blocks[i].component == models::Component::slab) {
-      table = model.bodies.position[i] - reference[i];
-      break;
-    }
+  const Vec3 table = structure.table ? Vec3(model.bodies.position[*structure.table] - reference[*structure.table]) : Vec3::Zero();
   for (std::size_t i = 0; i < model.bodies.size(); ++i) {
-    component.push_back(static_cast<double>(models::index(vault.blocks[i].component)));
+    component.push_back(static_cast<double>(model.bodies.joint_tag[i]));
     displacement.push_back((model.bodies.position[i] - reference[i] - table).norm());
   }
   return fields;
 }
 
-/// At the end of a level: damage_<level>.vtu (blocks with their component, displacement since settling relative to the table and the
-/// largest damage of their contact points), contacts_<level>.vtu (the contact points with damage, gap, stresses) and
-/// contacts_<level>.csv (the same as a table, with the components on each side, for the plots).
+/// At the end of a level: damage_<level>.vtu (blocks with their group, displacement since settling relative to the
+/// table and the largest damage of their contact points), contacts_<level>.vtu (the contact points with damage, gap,
+/// stresses) and contacts_<level>.csv (the same as a table, with the groups on each side, for the plots). The contact
+/// points are those of the damage memory (damage_memory.hpp): every point of a joint bonded at the start, with the
+/// worst state it reached and, if it is still there (present = 1), its present gap and stresses; a joint whose
+/// blocks have moved apart is drawn where it was on block A, with no gap or stress (present = 0). Then the points
+/// made during the run (never_bonded = 1), which never hide a joint.
 template <class Sim>
 void write_level_outputs(const std::string& dir, const std::string& label, const Sim& sim, const model::Model& model,
-                         const models::CrossVault& vault, const std::vector<Vec3>& reference) {
-  auto fields = block_fields(model, vault, reference);
+                         const Structure& structure, const std::vector<Vec3>& reference, const DamageMemory& memory) {
+  std::vector<ContactView> present;
+  sim.visit_contacts([&](const ContactView& c) { present.push_back(c); });
+  const auto& joints = memory.joints();
+  std::vector<std::ptrdiff_t> heir(joints.size(), -1);
+  for (std::size_t k = 0; k < present.size(); ++k)
+    if (!present[k].never_bonded)
+      if (const auto* j = memory.heir_of(model, present[k])) heir[static_cast<std::size_t>(j - joints.data())] = static_cast<std::ptrdiff_t>(k);
+  std::vector<ContactView> rows;
+  std::vector<char> there;
+  memory.visit(model, [&](const DamageMemory::Joint& j, const Vec3& world) {
+    const auto k = heir[rows.size()];
+    ContactView v;
+    if (k >= 0) {
+      v = present[static_cast<std::size_t>(k)];
+    } else {
+      v.position = world;
+      v.normal = Vec3::Zero();
+      v.area = j.area;
+      v.gap = std::numeric_limits<double>::quiet_NaN();
+    }
+    v.block_a = j.a;
+    v.block_b = j.b;
+    v.damage = j.damage;
+    v.never_bonded = false;
+    v.cracked = (j.state & DamageMemory::cracked) != 0;
+    v.crushed = (j.state & DamageMemory::crushed) != 0;
+    v.slipped = (j.state & DamageMemory::slipped) != 0;
+    rows.push_back(v);
+    there.push_back(k >= 0 ? 1 : 0);
+  });
+  for (const auto& v : present)
+    if (v.never_bonded) {
+      rows.push_back(v);
+      there.push_back(1);
+    }
+  auto fields = block_fields(model, structure, reference);
   auto& block_damage = fields["max_damage"];
   block_damage.assign(model.bodies.size(), 0.0);
-  sim.visit_contacts([&](const auto& c) {
+  for (const auto& c : rows) {
     block_damage[c.block_a] = std::max(block_damage[c.block_a], c.damage);
     block_damage[c.block_b] = std::max(block_damage[c.block_b], c.damage);
-  });
+  }
   io::write_blocks_vtu(dir + "/damage_" + label + ".vtu", model, fields);
-  io::write_contacts_vtu(dir + "/contacts_" + label + ".vtu", sim);
+  {
+    std::vector<Vec3> points, normals;
+    io::BlockFields f;
+    for (const auto& c : rows) {
+      points.push_back(c.position);
+      normals.push_back(c.normal);
+      f["normal_stress"].push_back(c.normal_stress);
+      f["shear_stress"].push_back(c.shear_stress);
+      f["gap"].push_back(c.gap);
+      f["area"].push_back(c.area);
+      f["damage"].push_back(c.damage);
+      f["never_bonded"].push_back(c.never_bonded ? 1.0 : 0.0);
+      f["cracked"].push_back(c.cracked ? 1.0 : 0.0);
+      f["crushed"].push_back(c.crushed ? 1.0 : 0.0);
+    }
+    f["present"].assign(there.begin(), there.end());
+    io::write_points_vtu(dir + "/contacts_" + label + ".vtu", points, f, {{"normal", normals}});
+  }
   io::write_atomically(dir + "/contacts_" + label + ".csv", [&](std::ostream& out) {
-    out << "x,y,z,nx,ny,nz,area,gap,normal_stress,shear_stress,damage,never_bonded,component_a,component_b\n";
-    char line[320];
-    sim.visit_contacts([&](const auto& c) {
-      std::snprintf(line, sizeof line, "%.6g,%.6g,%.6g,%.5g,%.5g,%.5g,%.5g,%.5g,%.6g,%.6g,%.5g,%d,%s,%s\n", c.position.x(),
+    out << "x,y,z,nx,ny,nz,area,gap,normal_stress,shear_stress,damage,never_bonded,component_a,component_b,present,cracked,crushed,slipped\n";
+    char line[360];
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      const auto& c = rows[r];
+      std::snprintf(line, sizeof line, "%.6g,%.6g,%.6g,%.5g,%.5g,%.5g,%.5g,%.5g,%.6g,%.6g,%.5g,%d,%s,%s,%d,%d,%d,%d\n", c.position.x(),
                     c.position.y(), c.position.z(), c.normal.x(), c.normal.y(), c.normal.z(), c.area, c.gap, c.normal_stress,
-                    c.shear_stress, c.damage, c.never_bonded ? 1 : 0, std::string(models::name(vault.blocks[c.block_a].component)).c_str(),
-                    std::string(models::name(vault.blocks[c.block_b].component)).c_str());
+                    c.shear_stress, c.damage, c.never_bonded ? 1 : 0, structure.group_of(c.block_a).c_str(),
+                    structure.group_of(c.block_b).c_str(), there[r], c.cracked ? 1 : 0, c.crushed ? 1 : 0, c.slipped ? 1 : 0);
       out << line;
-    });
+    }
   });
 }
 
@@ -417,11 +505,11 @@ class SnapshotSeries {
     }
   }
 
-  void write(const std::string& label, double time, const model::Model& model, const models::CrossVault& vault,
+  void write(const std::string& label, double time, const model::Model& model, const Structure& structure,
              const std::vector<Vec3>& reference) {
     std::filesystem::create_directories(dir_ + "/snapshots");
     const std::string name = "snapshots/level" + label + "_" + std::to_string(frames_in_level_[label]++) + ".vtu";
-    const auto fields = detail::block_fields(model, vault, reference);
+    const auto fields = detail::block_fields(model, structure, reference);
     io::write_blocks_vtu(dir_ + "/" + name, model, fields);
     frames_.emplace_back(time, name);
     io::write_atomically(dir_ + "/snapshots.pvd", [&](std::ostream& out) {

@@ -1,17 +1,19 @@
 #pragma once
-// The checkpoints of a cross-vault study: where the study stands (StudyCursor), the hash that ties a checkpoint to
+// The checkpoints of a study: where the study stands (StudyCursor), the hash that ties a checkpoint to
 // one model and one set of options, and the one list of what a checkpoint holds, for writing and reading.
 
 #include <cstdint>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
-#include "blockdem/analysis/vault_recorders.hpp"
-#include "blockdem/analysis/vault_report.hpp"
-#include "blockdem/analysis/vault_study_options.hpp"
+#include "blockdem/analysis/structure.hpp"
+#include "blockdem/analysis/study_options.hpp"
+#include "blockdem/analysis/study_recorders.hpp"
+#include "blockdem/analysis/study_report.hpp"
 #include "blockdem/io/checkpoint.hpp"
 #include "blockdem/model/model.hpp"
-#include "blockdem/models/cross_vault.hpp"
 #include "blockdem/motion/record.hpp"
 
 namespace blockdem::analysis {
@@ -33,13 +35,13 @@ struct StudyCursor {
 
 inline constexpr const char* study_checkpoint_file = "checkpoint.bin";
 
-/// The hash that a study's checkpoint carries: the model as built (blocks, ties, nodes), the joint laws, the input as
-/// cut, and every option that changes the run's results. Output folder, progress, checkpoint interval and stop are
-/// left out: a run may be resumed with other ones.
-inline std::uint64_t study_hash(const VaultStudyOptions& o, const model::Model& m, const models::CrossVault& v,
-                                const motion::Record& cut) {
+/// The hash that a study's checkpoint carries: the model as built (blocks, ties, nodes), the joint laws and their
+/// grids, the monitor points, the input as cut, and every option that changes the run's results. Output folder,
+/// progress, checkpoint interval and stop are left out: a run may be resumed with other ones.
+inline std::uint64_t study_hash(const StudyOptions& o, const Structure& s, const motion::Record& cut) {
   io::Hasher h;
-  h.add("blockdem cross vault study, checkpoint layout 1");
+  h.add("blockdem study, checkpoint layout 3");
+  const model::Model& m = s.model;
   auto add_points = [&h](const std::vector<Vec3>& points) {
     h.add(static_cast<std::uint64_t>(points.size()));
     for (const auto& p : points) h.add(p.x()).add(p.y()).add(p.z());
@@ -52,13 +54,26 @@ inline std::uint64_t study_hash(const VaultStudyOptions& o, const model::Model& 
   for (const auto& t : m.deformable.trusses) h.add(t.area).add(t.young).add(t.density).add(t.pretension).add(t.length0);
   add_points(m.deformable.nodes.position);
   h.add(m.deformable.nodes.real_mass).add(static_cast<std::uint64_t>(m.deformable.tetrahedra.size()));
-  for (const auto& row : v.joints)
-    for (const auto& j : row)
-      h.add(static_cast<int>(j.kind)).add(j.normal_stiffness).add(j.shear_stiffness).add(j.tensile_strength).add(j.cohesion)
-          .add(j.friction_angle).add(j.compressive_strength).add(j.residual_compressive_strength).add(j.fracture_energy_tension).add(j.fracture_energy_shear)
-          .add(j.fracture_energy_compression);
+  const auto& laws = s.laws;
+  h.add(laws.group_names().size());
+  for (const auto& g : laws.group_names()) h.add(g);
+  for (std::size_t ga = 0; ga < laws.groups(); ++ga)
+    for (std::size_t gb = ga; gb < laws.groups(); ++gb) {
+      h.add(laws.has(ga, gb)).add(laws.contact_point_area(ga, gb));
+      if (!laws.has(ga, gb)) continue;
+      const auto& law = laws.law(ga, gb);
+      h.add(law.index());
+      std::visit([&h]<class P>(const P& p) {
+        // Every law's parameters are doubles only: their bytes are their values.
+        static_assert(std::is_trivially_copyable_v<P> && sizeof(P) % sizeof(double) == 0);
+        h.add_bytes(&p, sizeof p);
+      }, law);
+    }
+  h.add(s.contacts.tolerance).add(s.contacts.max_contact_point_area).add(s.contacts.max_normal_angle);
+  for (const auto& p : s.monitors) h.add(p.name).add(p.block).add(p.position.x()).add(p.position.y()).add(p.position.z());
+  h.add(s.table.has_value()).add(s.table.value_or(0));
   h.add(cut.dt).add(cut.start_time).add(cut.acceleration);
-  h.add(static_cast<int>(o.kinematics)).add(o.axis).add(o.record_level).add(o.levels).add(o.rest).add(o.collapse_displacement);
+  h.add(o.axis).add(o.record_level).add(o.levels).add(o.rest).add(o.collapse_displacement);
   h.add(static_cast<int>(o.damping)).add(o.scheme_zeta()).add(o.frequency_hz).add(o.lower_hz).add(o.upper_hz).add(o.branches);
   h.add(o.target_dt).add(o.default_mass_increase_percent).add(o.settle_tolerance).add(o.settle_max_steps);
   h.add(o.free_vibration).add(o.history_dt).add(o.snapshots_every);
@@ -69,9 +84,9 @@ inline std::uint64_t study_hash(const VaultStudyOptions& o, const model::Model& 
 namespace detail {
 
 /// The one list of a study checkpoint's contents, for both directions (Archive: io::CheckpointWriter or Reader).
-template <class Archive, class Result, class Cursor, class Sim, class History, class Snapshots, class Positions>
+template <class Archive, class Result, class Cursor, class Sim, class History, class Snapshots, class Positions, class Memory>
 void visit_study_state(Archive& ar, Result& r, Cursor& cursor, Sim& sim, History& history, Snapshots& snapshots,
-                       Positions& settled_position) {
+                       Positions& settled_position, Memory& memory) {
   ar("model summary", r.model);
   ar("settling", r.settling);
   ar("timestep", r.timestep);
@@ -82,6 +97,7 @@ void visit_study_state(Archive& ar, Result& r, Cursor& cursor, Sim& sim, History
   ar("monitor histories", history);
   ar("snapshots", snapshots);
   ar.same_size("settled block positions", settled_position);
+  ar("damage memory", memory);
 }
 
 }  // namespace detail
