@@ -1,0 +1,221 @@
+// blockdem: the study of any block structure written as a model file (docs/model-file.md).
+//
+//   blockdem run MODEL.json [--out DIR] [--levels 25,50,100] [--damping none|mass|stiffness|rayleigh|maxwell] [...]
+//       settles the structure under gravity and shakes it at each level of the model file's record in turn, writing
+//       histories, damage maps, report.json and the run's Table 4 into DIR; every option overrides the file's;
+//       with "analysis": "pushover" in the file, the equivalent-static pushover instead: the collapse multiplier;
+//   blockdem check MODEL.json [--json]
+//       reads the model file, builds the blocks and detects their contacts: what the model holds, and the pairs of
+//       groups that touch without a joint law.
+//
+// Exit status: 0 on success, 1 if a run is interrupted or diverges, 2 on bad input.
+
+#include <chrono>
+#include <cstdio>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "blockdem/analysis/model_file.hpp"
+#include "blockdem/analysis/pushover.hpp"
+#include "blockdem/analysis/study.hpp"
+#include "blockdem/integrate/run.hpp"
+#include "blockdem/io/json.hpp"
+#include "blockdem/model/contact_detection.hpp"
+#include "cli.hpp"
+#include "study_cli.hpp"
+
+namespace {
+
+using namespace blockdem;
+
+/// `blockdem run`: the model file's study with the command line's overrides.
+struct RunCommand {
+  std::string path;
+  analysis::ModelFile file;
+  analysis::StudyOptions study;
+  programs::StudyCommand common;
+  CLI::Option* record_level = nullptr;
+
+  void add_to(CLI::App& app) {
+    // Read as soon as it is parsed, before the other options' values are stored: they override the file's.
+    app.add_option("model", path, "the model file (JSON, docs/model-file.md)")
+        ->required()
+        ->trigger_on_parse()
+        ->each([this](const std::string& p) {
+          file = analysis::read_model_file(p);
+          study = file.study;
+          study.out_dir = std::filesystem::path(p).stem().string() + "_run";
+        });
+    common.add_to(app, study, "the structure");
+    record_level = app.get_option("--record-level");
+  }
+
+  int run() {
+    common.finish(study);
+    if (file.pushover) return pushover();
+    // The intensity target of the file, unless the command line gives the record level.
+    if (file.scale.kind != analysis::RecordScale::Kind::record_level && record_level->count() == 0) {
+      std::string note;
+      study.record_level = 100;
+      const auto cut = analysis::detail::input_record(study, note);
+      study.record_level = analysis::record_level_for(file.scale, cut, path);
+    }
+    stop_on_interrupt();
+    const auto r = analysis::run_study(file.structure, study);
+    if (common.json) {
+      fmt::print("{}\n", analysis::detail::report_json(r));
+      return r.interrupted ? 1 : 0;
+    }
+    print_summary(r);
+    return r.interrupted ? 1 : 0;
+  }
+
+  /// "analysis": "pushover": the collapse multiplier by bisection (analysis/pushover.hpp).
+  int pushover() {
+    auto o = *file.pushover;
+    o.out_dir = study.out_dir;
+    o.progress = study.progress;
+    stop_on_interrupt();
+    const auto r = analysis::run_pushover(file.structure, o, study.contacts == model::ContactKinds::general);
+    if (r.falls_under_weight)
+      fmt::print("'{}' does not stand under its own weight (lambda = 0 collapses)\n", file.structure.name);
+    else if (r.stands_at_upper)
+      fmt::print("'{}' still stands at lambda = {:g}, the largest tried (study.pushover.upper)\n", file.structure.name, r.lower);
+    else
+      fmt::print("collapse multiplier lambda = {:.4f} (stands at {:.4f}, collapses at {:.4f}; {} trials, {:.1f} s)\n", r.collapse_multiplier,
+                 r.lower, r.upper, r.trials.size(), r.wall_seconds);
+    fmt::print("outputs in {}/ (report.json, pushover.csv, pushover_*.vtu); plots: python3 scripts/plot_study.py {}\n", o.out_dir, o.out_dir);
+    return interrupted() ? 1 : 0;
+  }
+
+  void print_summary(const analysis::StudyResult& r) const {
+    fmt::print("input: {} ({}, baseline {}), PGA {:.3f} m/s^2 = {:.3f} g at 100 %\n", r.input.name, r.input.cut, r.input.baseline, r.input.pga * 100 / study.record_level,
+               r.input.pga * 100 / study.record_level / standard_gravity);
+    fmt::print("model '{}': {} blocks ({} deformable, {} nodes, {} tetrahedra), {} ties, {} contact points, {:.0f} kg free\n",
+               r.model.name, r.model.blocks, r.model.deformable_blocks, r.model.nodes, r.model.tetrahedra, r.model.ties,
+               r.model.contact_points, r.model.free_mass);
+    fmt::print("settling: {} steps, unbalanced force ratio {:.2e}{}, {:.1f} s\n", r.settling.steps, r.settling.unbalanced_ratio,
+               r.settling.converged ? "" : " (NOT converged)", r.settling.wall_seconds);
+    fmt::print("damping: {}\ntimestep: {:.3e} s; density scaling adds {:.3f} % of the mass\n", r.damping.description, r.timestep.dt,
+               r.timestep.scaling.mass_increase_percent);
+    const char axis = study.axis;
+    for (const auto& L : r.levels) {
+      std::string peaks;
+      for (const auto& name : r.monitor_points)
+        for (const auto& p : L.peaks)
+          if (p.name == name + "_u" + axis) peaks += fmt::format(" {} {:+.2f}/{:+.2f} mm", name, 1e3 * p.max, 1e3 * p.min);
+      fmt::print("level {:g} %: {} steps in {:.1f} s{}; u{}:{}; damaged joints {} (cracked {}, crushed {}, slipped {}); "
+                 "energy balance error {:.2e}\n",
+                 L.level, L.steps, L.wall_seconds, L.interrupted ? " INTERRUPTED" : "", axis, peaks, L.damage.total.damaged,
+                 L.damage.total.cracked, L.damage.total.crushed, L.damage.total.slipped, L.energy.balance_error);
+      if (L.collapse.collapsed)
+        fmt::print("  COLLAPSED {:.3f} s into the level: {} moved {:.3f} m from where it settled (--collapse-displacement {:g} m)\n",
+                   L.collapse.time, L.collapse.point, L.collapse.displacement, study.collapse_displacement);
+    }
+    fmt::print("\n{}", analysis::table4(r));
+    fmt::print("outputs in {}/ (report.json, history_<level>.csv, damage_<level>.vtu, contacts_<level>.vtu/.csv); plots: "
+               "python3 scripts/plot_study.py {}\n", study.out_dir, study.out_dir);
+    if (r.interrupted)
+      fmt::print("stopped early; continue with the same options and --resume {}/{}\n", study.out_dir, analysis::study_checkpoint_file);
+  }
+};
+
+/// `blockdem check`: the model as built, its contacts, and the pairs of groups that touch without a law.
+struct CheckCommand {
+  std::string path;
+  bool json = false;
+
+  void add_to(CLI::App& app) {
+    app.add_option("model", path, "the model file (JSON, docs/model-file.md)")->required();
+    app.add_flag("--json", json, "print JSON");
+  }
+
+  int run() const {
+    using clock = std::chrono::steady_clock;
+    const auto t0 = clock::now();
+    const auto file = analysis::read_model_file(path);
+    const double load_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+    const auto& s = file.structure;
+    s.validate();
+    auto settings = s.contacts;
+    settings.kinds = file.study.contacts;
+    s.laws.fill(settings);
+    const auto t1 = clock::now();
+    const auto contacts = model::detect_contacts(s.model.bodies, settings);
+    const double detection_seconds = std::chrono::duration<double>(clock::now() - t1).count();
+    std::map<std::pair<std::size_t, std::size_t>, long long> by_pair;
+    for (const auto& c : contacts) {
+      auto a = static_cast<std::size_t>(s.model.bodies.joint_tag[c.a]), b = static_cast<std::size_t>(s.model.bodies.joint_tag[c.b]);
+      if (a > b) std::swap(a, b);
+      ++by_pair[{a, b}];
+    }
+    std::vector<std::string> missing;
+    for (const auto& [pair, n] : by_pair)
+      if (!s.laws.has(pair.first, pair.second))
+        missing.push_back(s.laws.name(pair.first) + "-" + s.laws.name(pair.second) + " (" + std::to_string(n) + " contact points)");
+    if (json) {
+      io::JsonObject out, pairs;
+      for (const auto& [pair, n] : by_pair) pairs.add(s.laws.name(pair.first) + "-" + s.laws.name(pair.second), n);
+      out.add("model", s.name).add("blocks", static_cast<long long>(s.model.bodies.size()))
+          .add("deformable_blocks", static_cast<long long>(s.model.deformable.blocks.size()))
+          .add("tetrahedra", static_cast<long long>(s.model.deformable.tetrahedra.size()))
+          .add("ties", static_cast<long long>(s.model.deformable.trusses.size())).add("groups", s.groups())
+          .add("free_mass_kg", s.model.total_mass()).add("contact_points", static_cast<long long>(contacts.size()))
+          .add("contact_points_by_group_pair", pairs).add("pairs_without_law", missing)
+          .add("monitor_points", static_cast<long long>(s.monitors.size())).add("table", s.table ? s.model.bodies.name[*s.table] : "")
+          .add("load_seconds", load_seconds).add("detection_seconds", detection_seconds);
+      fmt::print("{}\n", out.str());
+    } else {
+      fmt::print("model '{}': {} blocks ({} deformable, {} tetrahedra), {} ties, {:.1f} kg free; groups:", s.name, s.model.bodies.size(),
+                 s.model.deformable.blocks.size(), s.model.deformable.tetrahedra.size(), s.model.deformable.trusses.size(), s.model.total_mass());
+      for (const auto& g : s.groups()) fmt::print(" {}", g);
+      fmt::print("\n{} contact points:", contacts.size());
+      for (const auto& [pair, n] : by_pair) fmt::print(" {}-{} {}", s.laws.name(pair.first), s.laws.name(pair.second), n);
+      fmt::print("\nmonitor points:");
+      for (const auto& m : s.monitors) fmt::print(" {} (block '{}')", m.name, s.model.bodies.name[m.block]);
+      fmt::print("\ntable: {}\nread and built in {:.2f} s, contacts detected in {:.2f} s\n",
+                 s.table ? "'" + s.model.bodies.name[*s.table] + "'" : std::string("none (no base block: no record can move it)"), load_seconds,
+                 detection_seconds);
+    }
+    if (!missing.empty()) {
+      std::string list;
+      for (const auto& m : missing) list += (list.empty() ? "" : ", ") + m;
+      std::fprintf(stderr, "blockdem check: %s: groups touch without a joint law: %s; add them to \"joints\"\n", path.c_str(), list.c_str());
+      return programs::exit_bad_input;
+    }
+    return 0;
+  }
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"blockdem: the seismic study of a masonry block structure from its model file (docs/model-file.md)"};
+  app.require_subcommand(1);
+  RunCommand run;
+  auto* run_app = app.add_subcommand("run", "settle the structure and shake it at each level in turn (the incremental analysis)");
+  CheckCommand check;
+  auto* check_app = app.add_subcommand("check", "read the model file, build the blocks and detect the contacts");
+  check.add_to(*check_app);
+  const char* command = "run";
+  try {
+    run.add_to(*run_app);
+    if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
+    command = check_app->parsed() ? "check" : "run";
+    return check_app->parsed() ? check.run() : run.run();
+  } catch (const InvalidArgument& e) {
+    std::fprintf(stderr, "blockdem %s: error: %s\n", command, e.what());
+    return programs::exit_bad_input;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "blockdem %s: error: %s\n", command, e.what());
+    return programs::exit_bad_input;
+  } catch (const RunawayError& e) {
+    std::fprintf(stderr, "blockdem %s: %s\n", command, e.what());
+    return 1;
+  }
+}
