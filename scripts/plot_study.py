@@ -105,6 +105,20 @@ class Run:
         try:
             with open(path) as f:
                 self.report = json.load(f)
+        except (OSError, ValueError) as error:
+            fail(f"cannot read {path}: {error}")
+        # A pushover's report (blockdem run with "analysis": "pushover"): its curve only.
+        self.pushover = isinstance(self.report, dict) and "pushover" in self.report and "levels" not in self.report
+        if self.pushover:
+            push = self.report["pushover"]
+            self.scheme, self.axis, self.synthetic, self.record = "pushover", push.get("axis", "x"), False, ""
+            self.level_reports, self.levels, self.groups = {}, [], []
+            self.model = self.report.get("model", {}).get("name", "")
+            self.name = os.path.basename(os.path.normpath(folder))
+            self.label, self.colour, self.title = self.name, None, self.name
+            self._histories = {}
+            return
+        try:
             self.scheme = self.report["damping"]["scheme"]
             self.axis = self.report["input"]["axis"]
             self.synthetic = bool(self.report["input"]["synthetic"])
@@ -158,6 +172,8 @@ def label_runs(runs):
 
 def input_note(runs):
     """What shook the runs, said in every title: the synthetic stand-in loudly, a record by its file name."""
+    if all(r.pushover for r in runs):
+        return "lambda g along " + ", ".join(sorted({r.axis for r in runs}))
     notes = {f"SYNTHETIC {re.sub(r'(?i)^synthetic ', '', short_record(r.record))}" if r.synthetic
              else short_record(r.record) for r in runs}
     return "; ".join(sorted(notes))
@@ -362,6 +378,15 @@ def main():
                         help="damage maps seen from +x, +y, +z, or from all six sides (default)")
     args = parser.parse_args()
     runs = [Run(folder) for folder in args.runs]
+    pushed = [r for r in runs if r.pushover]
+    if pushed:  # pushovers: their curve, and nothing else of theirs
+        out = args.out or args.runs[0]
+        os.makedirs(out, exist_ok=True)
+        label_runs(pushed)
+        plot_pushover(pushed, os.path.join(out, "pushover.png"))
+        runs = [r for r in runs if not r.pushover]
+        if not runs:
+            return
     for r in runs:
         if not r.levels:
             print(f"{SCRIPT}: {r.folder}: report.json lists no level: left out", file=sys.stderr)

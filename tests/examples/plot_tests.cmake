@@ -65,6 +65,12 @@ set(vault_run "${CMAKE_CURRENT_BINARY_DIR}/vault_run")
 blockdem_plot_test(vault SCRIPT ${scripts}/plot_vault.py NEEDS vault_run ARGS ${vault_run} --out ${plots}/vault
   PNGS ${plots}/vault/displacement_oc1.png ${plots}/vault/displacement_oc2_oc4.png
        ${plots}/vault/acceleration_acc18.png ${plots}/vault/damage_map.png ${plots}/vault/timing.png)
+# Any study's figures (scripts/plot_study.py) from the same run, and the pushover curve of a block (b/h = 0.3).
+blockdem_plot_test(study SCRIPT ${scripts}/plot_study.py NEEDS vault_run ARGS ${vault_run} --out ${plots}/study --points OC1,ACC18
+  PNGS ${plots}/study/histories.png ${plots}/study/accelerations.png ${plots}/study/damage_by_group.png)
+blockdem_plot_test(pushover SCRIPT ${scripts}/plot_study.py
+  PRODUCE_1 $<TARGET_FILE:blockdem_program> run ${PROJECT_SOURCE_DIR}/examples/models/block_pushover.json --out pushed --quiet
+  ARGS pushed --out . PNGS ${plots}/pushover/pushover.png)
 # A sweep's figures from the small sweep of program.cross_vault.sweep.
 set_tests_properties(program.cross_vault.sweep PROPERTIES FIXTURES_SETUP vault_sweep)
 blockdem_plot_test(sweep SCRIPT ${scripts}/plot_sweep.py NEEDS vault_sweep

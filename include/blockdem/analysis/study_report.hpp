@@ -436,22 +436,15 @@ void write_level_outputs(const std::string& dir, const std::string& label, const
   }
   io::write_blocks_vtu(dir + "/damage_" + label + ".vtu", model, fields);
   {
-    std::vector<Vec3> points, normals;
     io::BlockFields f;
     for (const auto& c : rows) {
-      points.push_back(c.position);
-      normals.push_back(c.normal);
-      f["normal_stress"].push_back(c.normal_stress);
-      f["shear_stress"].push_back(c.shear_stress);
-      f["gap"].push_back(c.gap);
-      f["area"].push_back(c.area);
-      f["damage"].push_back(c.damage);
-      f["never_bonded"].push_back(c.never_bonded ? 1.0 : 0.0);
       f["cracked"].push_back(c.cracked ? 1.0 : 0.0);
       f["crushed"].push_back(c.crushed ? 1.0 : 0.0);
     }
     f["present"].assign(there.begin(), there.end());
-    io::write_points_vtu(dir + "/contacts_" + label + ".vtu", points, f, {{"normal", normals}});
+    io::write_contact_points_vtu(dir + "/contacts_" + label + ".vtu", [&](auto&& visit) {
+      for (const auto& c : rows) visit(c);
+    }, std::move(f));
   }
   io::write_atomically(dir + "/contacts_" + label + ".csv", [&](std::ostream& out) {
     out << "x,y,z,nx,ny,nz,area,gap,normal_stress,shear_stress,damage,never_bonded,component_a,component_b,present,cracked,crushed,slipped\n";

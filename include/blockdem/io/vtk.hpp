@@ -6,6 +6,7 @@
 #include <map>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "blockdem/core/error.hpp"
@@ -163,14 +164,15 @@ inline void write_tetrahedra_vtu(const std::string& path, const model::Model& mo
   });
 }
 
-/// Writes the contact points of a simulation as vertices with normal_stress, shear_stress (Pa), gap (m), area (m^2),
-/// damage and normal.
-template <class Simulation>
-void write_contacts_vtu(const std::string& path, const Simulation& simulation) {
+/// Writes contact points as vertices with normal_stress, shear_stress (Pa), gap (m), area (m^2), damage,
+/// never_bonded and the normal, plus `extra` fields (one value per point): visit(f) calls f(view) for each point
+/// (a ContactView: integrate/contact_view.hpp).
+template <class Visit>
+void write_contact_points_vtu(const std::string& path, Visit&& visit, BlockFields extra = {}) {
   std::vector<Vec3> points, normal;
-  BlockFields fields;
+  BlockFields fields = std::move(extra);
   for (const char* name : {"normal_stress", "shear_stress", "gap", "area", "damage", "never_bonded"}) fields[name];
-  simulation.visit_contacts([&](const auto& c) {
+  visit([&](const auto& c) {
     points.push_back(c.position);
     normal.push_back(c.normal);
     fields["normal_stress"].push_back(c.normal_stress);
@@ -181,6 +183,12 @@ void write_contacts_vtu(const std::string& path, const Simulation& simulation) {
     fields["never_bonded"].push_back(c.never_bonded ? 1.0 : 0.0);
   });
   write_points_vtu(path, points, fields, {{"normal", normal}});
+}
+
+/// Writes the contact points of a simulation (write_contact_points_vtu).
+template <class Simulation>
+void write_contacts_vtu(const std::string& path, const Simulation& simulation) {
+  write_contact_points_vtu(path, [&](auto&& f) { simulation.visit_contacts(f); });
 }
 
 }  // namespace blockdem::io
