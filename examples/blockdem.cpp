@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <fstream>
 #include <map>
 #include <set>
 #include <string>
@@ -28,10 +29,20 @@
 #include "blockdem/model/contact_detection.hpp"
 #include "cli.hpp"
 #include "study_cli.hpp"
+#include "study_runs.hpp"
+#include "sweep_cli.hpp"
 
 namespace {
 
 using namespace blockdem;
+
+/// The record level (%) that scales the record of `o` (as cut and corrected) to the model file's intensity target:
+/// a PGA or Sa(T) at 100 %.
+double scaled_record_level(const analysis::ModelFile& file, analysis::StudyOptions o, const std::string& path) {
+  std::string note;
+  o.record_level = 100;
+  return analysis::record_level_for(file.scale, analysis::detail::input_record(o, note), path);
+}
 
 /// `blockdem run`: the model file's study with the command line's overrides.
 struct RunCommand {
@@ -59,14 +70,10 @@ struct RunCommand {
     common.finish(study);
     if (file.pushover) return pushover();
     // The intensity target of the file, unless the command line gives the record level.
-    if (file.scale.kind != analysis::RecordScale::Kind::record_level && record_level->count() == 0) {
-      std::string note;
-      study.record_level = 100;
-      const auto cut = analysis::detail::input_record(study, note);
-      study.record_level = analysis::record_level_for(file.scale, cut, path);
-    }
+    if (file.scale.kind != analysis::RecordScale::Kind::record_level && record_level->count() == 0)
+      study.record_level = scaled_record_level(file, study, path);
     stop_on_interrupt();
-    const auto r = analysis::run_study(file.structure, study);
+    const auto r = programs::run_study(file.structure, study);
     if (common.json) {
       fmt::print("{}\n", analysis::detail::report_json(r));
       return r.interrupted ? 1 : 0;
@@ -122,6 +129,69 @@ struct RunCommand {
                "python3 scripts/plot_study.py {}\n", study.out_dir, study.out_dir);
     if (r.interrupted)
       fmt::print("stopped early; continue with the same options and --resume {}/{}\n", study.out_dir, analysis::study_checkpoint_file);
+  }
+};
+
+/// `blockdem sweep`: the cases of a sweep file (docs/sweeps.md) over the structure of the model file it names, whose
+/// study gives their base options; the study's command-line options override them, as for `run`.
+struct SweepCommand {
+  analysis::SweepSpec spec;
+  analysis::ModelFile file;
+  analysis::StudyOptions study;
+  programs::StudyCommand common;
+  programs::SweepCommand sweep;
+
+  void add_to(CLI::App& app) {
+    sweep.add_to(app, "the sweep file (JSON: \"model\", the model file; damping schemes and their grids, records, levels or "
+                      "intensity targets; docs/sweeps.md)");
+    // Read as soon as it is parsed, before the other options' values are stored: they override the model file's.
+    sweep.spec_option->trigger_on_parse()->each([this](const std::string& p) {
+      spec = analysis::read_sweep_file(p);
+      if (spec.model.empty())
+        throw InvalidArgument(p + ": names no model file: add \"model\": \"your_model.json\" (cross_vault sweep studies the vault)");
+      file = analysis::read_model_file(spec.model);
+      study = file.study;
+      study.out_dir = std::filesystem::path(p).stem().string() + "_sweep";
+    });
+    common.add_to(app, study, "the structure");
+    common.out->description("the sweep's folder: cases/<id>/ per case, summary.csv and summary.json");
+  }
+
+  int run(int argc, char** argv) {
+    sweep.refuse_grid_options();
+    common.finish(study);
+    if (file.pushover)
+      throw InvalidArgument(spec.model + ": study.analysis: a pushover; a sweep runs the seismic study's levels (\"levels\")");
+    if (file.structure.monitors.empty())
+      throw InvalidArgument(spec.model + ": monitor_points: a sweep's summary gives the peaks of the first monitor point; add one");
+    analysis::VaultStudyOptions base;
+    static_cast<analysis::StudyOptions&>(base) = study;
+    analysis::SweepRunOptions run;
+    run.out_dir = study.out_dir;
+    std::ifstream model_text(spec.model, std::ios::binary);
+    run.fingerprint = sweep.fingerprint(argc, argv, spec, std::string(std::istreambuf_iterator<char>(model_text), {}));
+    run.measured = spec.measured;
+    run.measured_level = spec.measured_level;
+    run.progress = study.progress;
+    const std::string& first = file.structure.monitors.front().name;
+    run.displacement_channel = first + "_u" + study.axis;
+    run.acceleration_channel = first + "_a" + study.axis;
+    run.residual_point = first;
+    run.program = "blockdem sweep";
+    run.study_is_model = true;
+    run.study = [this](const analysis::VaultStudyOptions& o) { return programs::run_study(file.structure, o); };
+    auto cases = analysis::expand_sweep(spec, base);
+    // A model file's intensity target (a PGA or Sa(T) at 100 %) scales each case's record as it scales the file's own,
+    // unless the sweep gives targets of its own; a record that cannot be read fails its case when it runs.
+    if (file.scale.kind != analysis::RecordScale::Kind::record_level && spec.measure == analysis::IntensityMeasure::level)
+      for (auto& c : cases) {
+        try {
+          c.options.record_level = scaled_record_level(file, c.options, spec.model);
+        } catch (const InvalidArgument&) {
+        } catch (const InputError&) {
+        }
+      }
+    return programs::run_sweep_command("blockdem sweep", sweep, cases, run, argc, argv);
   }
 };
 
@@ -202,11 +272,17 @@ int main(int argc, char** argv) {
   CheckCommand check;
   auto* check_app = app.add_subcommand("check", "read the model file, build the blocks and detect the contacts");
   check.add_to(*check_app);
-  const char* command = "run";
+  SweepCommand sweep;
+  auto* sweep_app = app.add_subcommand("sweep", "many studies of the model file a sweep file names: damping grids, records, "
+                                                "levels or intensity targets (IDA), on MPI ranks when built with MPI");
+  const char* command = "run";  // for messages: the subcommand typed, before it is parsed
+  for (const char* name : {"check", "sweep"})
+    if (argc > 1 && std::string(argv[1]) == name) command = name;
   try {
     run.add_to(*run_app);
+    sweep.add_to(*sweep_app);
     if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
-    command = check_app->parsed() ? "check" : "run";
+    if (sweep_app->parsed()) return sweep.run(argc, argv);
     return check_app->parsed() ? check.run() : run.run();
   } catch (const InvalidArgument& e) {
     std::fprintf(stderr, "blockdem %s: error: %s\n", command, e.what());

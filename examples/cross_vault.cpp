@@ -33,6 +33,8 @@
 #include "blockdem/models/cross_vault.hpp"
 #include "cli.hpp"
 #include "study_cli.hpp"
+#include "study_runs.hpp"
+#include "sweep_cli.hpp"
 
 namespace {
 
@@ -128,11 +130,17 @@ struct CompareCommand {
   }
 };
 
+/// The vault's study (analysis::run_vault_study), compiled in study_runs.cpp.
+blockdem::analysis::StudyResult vault_study(const blockdem::analysis::VaultStudyOptions& o) {
+  o.validate();
+  return blockdem::programs::run_study(blockdem::analysis::vault_structure(o), o);
+}
+
 int run_study(RunCommand& command) {
   using namespace blockdem;
   command.finish();
   stop_on_interrupt();
-  const auto r = analysis::run_vault_study(command.study);
+  const auto r = vault_study(command.study);
   if (command.common.json) {
     fmt::print("{}\n", analysis::detail::report_json(r));
     return r.interrupted ? 1 : 0;
@@ -187,9 +195,39 @@ int run_study(RunCommand& command) {
   return r.interrupted ? 1 : 0;
 }
 
-}  // namespace
+/// `cross_vault sweep`: the vault's cases, the options of `run` as their base.
+struct SweepCommand {
+  RunCommand base;
+  blockdem::programs::SweepCommand sweep;
 
-#include "vault_sweep.hpp"
+  void add_to(CLI::App& app) {
+    base.add_to(app);
+    base.study.out_dir = "vault_sweep";
+    base.out->description("the sweep's folder: cases/<id>/ per case, summary.csv and summary.json")->default_str("vault_sweep");
+    sweep.add_to(app, "the sweep file (JSON: damping schemes and their grids, records, levels or intensity targets, "
+                      "kinematics; docs/sweeps.md)");
+  }
+
+  int run(int argc, char** argv) {
+    using namespace blockdem;
+    sweep.refuse_grid_options();
+    base.finish();
+    const analysis::SweepSpec spec = analysis::read_sweep_file(sweep.spec);
+    if (!spec.model.empty())
+      throw InvalidArgument(sweep.spec + ": names the model file '" + spec.model + "': run it with `blockdem sweep " +
+                            sweep.spec + "` (cross_vault sweep studies the vault)");
+    analysis::SweepRunOptions run;
+    run.out_dir = base.study.out_dir;
+    run.fingerprint = sweep.fingerprint(argc, argv, spec);
+    run.measured = spec.measured;
+    run.measured_level = spec.measured_level;
+    run.progress = base.study.progress;
+    run.study = vault_study;
+    return programs::run_sweep_command("cross_vault sweep", sweep, analysis::expand_sweep(spec, base.study), run, argc, argv);
+  }
+};
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace blockdem;
@@ -257,7 +295,7 @@ int main(int argc, char** argv) {
       return programs::exit_bad_input;
     };
     try {
-      if (sweep_app->parsed()) return run_sweep_command(sweep, argc, argv);
+      if (sweep_app->parsed()) return sweep.run(argc, argv);
       if (model_app->parsed()) {
         model_command.finish();
         model_command.study.validate();

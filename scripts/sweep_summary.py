@@ -1,7 +1,7 @@
-"""The reader of `cross_vault sweep`'s summary.csv (one row per case) and its case model, used by plot_sweep.py:
-the columns, a case (Case) and its damping setting, the text of settings and records in the paper's words, the
-listing of unfinished cases, and the grouping of the mass and maxwell cases into grids (zeta x centre frequency or
-band) per (kinematics, record). Data and grouping only; the figures are in plot_sweep.py."""
+"""The reader of the summary.csv of `cross_vault sweep` and `blockdem sweep` (one row per case) and its case model,
+used by plot_sweep.py: the columns, a case (Case) and its damping setting, the text of settings and records in the
+paper's words, the listing of unfinished cases, and the grouping of the mass and maxwell cases into grids (zeta x
+centre frequency or band) per (kinematics, record). Data and grouping only; the figures are in plot_sweep.py."""
 import csv
 import math
 import os
@@ -9,10 +9,7 @@ import sys
 
 COLUMNS = ["index", "id", "status", "message", "kinematics", "record", "scheme", "zeta", "frequency_hz",
            "band_lower_hz", "band_upper_hz", "branches", "measure", "intensity_g", "level_percent", "input_pga_g",
-           "input_sa_g", "wall_seconds", "steps", "oc1_uy_max_mm", "oc1_uy_min_mm", "acc18_ay_max_m_s2",
-           "acc18_ay_min_m_s2", "residual_oc1_uy_mm", "cracked", "crushed", "damaged", "peak_bias_oc1_uy_percent",
-           "peak_bias_acc18_ay_percent", "bias_oc1_uy_max_percent", "bias_oc1_uy_min_percent",
-           "bias_acc18_ay_max_percent", "bias_acc18_ay_min_percent", "eps_rmsd_uy_percent"]
+           "input_sa_g", "wall_seconds", "steps", "cracked", "crushed", "damaged", "eps_rmsd_uy_percent"]
 TEXT = {"id", "status", "message", "kinematics", "record", "scheme", "measure"}
 NAMES = {"none": "noDamp", "mass": "MassProp", "maxwell": "Maxwell", "stiffness": "StiffProp", "rayleigh": "Rayleigh"}
 SYNTHETIC_TAG = "aqa75"  # the record tag of the built-in synthetic stand-in
@@ -20,13 +17,35 @@ SYNTHETIC_TAG = "aqa75"  # the record tag of the built-in synthetic stand-in
 
 class Channel:
     def __init__(self, name, prefix, unit, unit_text):
-        self.name, self.unit, self.unit_text = name, unit, unit_text
-        self.max, self.min = f"{prefix}_max_{unit_text}", f"{prefix}_min_{unit_text}"
+        self.unit, self.unit_text = unit, unit_text
+        self.rename(name, prefix)
+
+    def rename(self, name, prefix):
+        self.name, self.prefix = name, prefix
+        self.max, self.min = f"{prefix}_max_{self.unit_text}", f"{prefix}_min_{self.unit_text}"
         self.bias = f"peak_bias_{prefix}_percent"
 
+    def columns(self):
+        return [self.max, self.min, self.bias, f"bias_{self.prefix}_max_percent", f"bias_{self.prefix}_min_percent"]
 
+
+# The summary's two channels: the vault's crown drift and accelerometer (Fig. 13), or a model file's first monitor
+# point (blockdem sweep), as read_summary finds them in the header.
 OC1 = Channel("OC1-y", "oc1_uy", "mm", "mm")
 ACC18 = Channel("ACC18-y", "acc18_ay", "m/s$^2$", "m_s2")
+
+
+def find_channels(header):
+    """Names OC1 and ACC18 after the columns <channel>_max_mm and <channel>_max_m_s2 of the header."""
+    for channel in (OC1, ACC18):
+        suffix = f"_max_{channel.unit_text}"
+        prefix = next((h[:-len(suffix)] for h in header if h.endswith(suffix) and not h.startswith("bias_")), None)
+        if prefix is None or prefix == channel.prefix:
+            continue
+        point, _, component = prefix.rpartition("_")
+        channel.rename(f"{point}-{component[-1:]}", prefix)
+
+
 # The settings retained for validation in the paper (Sect. 5): MP 4 % at 7.5 Hz, Maxwell 3 % on [1, 40] Hz.
 SELECTED = {"mass": {"zeta": 0.04, "frequency_hz": 7.5}, "maxwell": {"zeta": 0.03, "band": (1.0, 40.0)}}
 
@@ -85,11 +104,13 @@ def read_summary(path):
     if not lines:
         fail(f"{path} is empty: no header row (has the sweep started?)")
     header = [name.strip() for name in lines[0]]
-    missing = [name for name in COLUMNS if name not in header]
+    find_channels(header)
+    columns = COLUMNS + OC1.columns() + ACC18.columns()
+    missing = [name for name in columns if name not in header]
     if missing:
-        fail(f"{path}: not a `cross_vault sweep` summary: missing the column{'s' if len(missing) > 1 else ''} "
+        fail(f"{path}: not a sweep summary (cross_vault sweep, blockdem sweep): missing the column{'s' if len(missing) > 1 else ''} "
              f"{', '.join(missing)}")
-    column = {name: header.index(name) for name in COLUMNS}
+    column = {name: header.index(name) for name in columns}
     cases, notes = [], []
     bad_numbers = 0
     for number, fields in enumerate(lines[1:], start=2):
@@ -194,14 +215,14 @@ def list_unfinished(cases, show_all):
 
 
 def print_all(cases):
-    print("every case (|peak| OC1-y mm, ACC18-y m/s^2; signed peak bias %):")
+    print(f"every case (|peak| {OC1.name} mm, {ACC18.name} m/s^2; signed peak bias %):")
     for c in cases:
         def number(x, form):
             return format(x, form) if x is not None else "-"
         print(f"  {int(c['index']) if c['index'] is not None else '?':>4} {c.id:<48} {c.status:<11} "
               f"level {number(c['level_percent'], 'g'):>5} %  |OC1-y| {number(c.peak(OC1), '.3g'):>7}  "
-              f"|ACC18-y| {number(c.peak(ACC18), '.3g'):>7}  bias OC1-y {number(c[OC1.bias], '+.1f'):>7}  "
-              f"ACC18-y {number(c[ACC18.bias], '+.1f'):>7}")
+              f"|{ACC18.name}| {number(c.peak(ACC18), '.3g'):>7}  bias {OC1.name} {number(c[OC1.bias], '+.1f'):>7}  "
+              f"{ACC18.name} {number(c[ACC18.bias], '+.1f'):>7}")
 
 
 # ----------------------------------------------------------------------------------------------------- grid

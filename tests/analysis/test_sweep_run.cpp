@@ -62,6 +62,7 @@ TEST_CASE("sweep run: cases that fail are recorded, the others complete, a secon
   const auto cases = expand_sweep(spec, short_coarse_study());
   REQUIRE(cases.size() == 4);
   SweepRunOptions run;
+  run.study = run_vault_study;
   run.out_dir = dir.string();
   run.fingerprint = "test";
   run.progress = false;
@@ -83,7 +84,7 @@ TEST_CASE("sweep run: cases that fail are recorded, the others complete, a secon
 
   // The summary: a header and a row per case, in case order; a finished case has its peaks, a failed one none.
   const std::string summary = test::file_contents(dir / "summary.csv");
-  CHECK(summary.rfind(std::string(summary_header) + "\n", 0) == 0);
+  CHECK(summary.rfind(summary_header(run) + "\n", 0) == 0);
   CHECK(std::count(summary.begin(), summary.end(), '\n') == 5);
   CHECK(summary.find("\n0,rigid_aqa75_none,done,,rigid,aqa75,none,") != std::string::npos);
   CHECK(summary.find("\n3,rigid_record_mass_z0.04_f7.5,failed,") != std::string::npos);
@@ -127,6 +128,7 @@ TEST_CASE("sweep run: with measured channels, a row holds the biases of compare_
   alone.out_dir = (dir / "measured").string();
   run_vault_study(alone);
   SweepRunOptions run;
+  run.study = run_vault_study;
   run.out_dir = (dir / "sweep").string();
   run.progress = false;
   run.measured = (dir / "measured" / "history_25.csv").string();
@@ -171,6 +173,7 @@ TEST_CASE("sweep run: a fault that is not the case's input fails the row as an i
   spec.levels = {25};
   const auto cases = expand_sweep(spec, short_coarse_study());
   SweepRunOptions run;
+  run.study = run_vault_study;
   run.out_dir = (dir / "faulty").string();
   run.progress = false;
   // A std::exception that no input explains (here thrown by the poll, as a logic error or bad_alloc would be).
@@ -201,6 +204,7 @@ TEST_CASE("sweep run: a run that leaves every bound fails with its level, time a
   base.collapse_displacement = 0.001;  // at the runaway bound, which is checked first
   const auto cases = expand_sweep(spec, base);
   SweepRunOptions run;
+  run.study = run_vault_study;
   run.out_dir = dir.string();
   run.progress = false;
   const auto quiet = run_sweep_case(cases[0], run);
@@ -223,6 +227,7 @@ TEST_CASE("sweep run: a case whose vault collapses is done, and its row says at 
   const auto cases = expand_sweep(spec, base);
   REQUIRE(cases.size() == 1);  // incremental: one case, 75 % then 1000 %
   SweepRunOptions run;
+  run.study = run_vault_study;
   run.out_dir = dir.string();
   run.progress = false;
   const auto row = run_sweep_case(cases[0], run);

@@ -3,7 +3,9 @@
 # or in one process, then every case alone with --case K and summed up with --summarize. Checks: the two runs give
 # the same histories, byte for byte, and the same summary but for the wall times; the failed cases are failed and
 # the others done; a second run of the sweep skips the finished cases and leaves their files as they were.
-# Arguments: PROGRAM, SPEC, WORK (a scratch folder), ARGS (the base options), MPIEXEC (optional), RANKS.
+# Arguments: PROGRAM, SPEC, WORK (a scratch folder), ARGS (the base options), MPIEXEC (optional), RANKS, MODEL (the
+# model file the sweep file names, copied beside it; optional) and PREFIX (the cases' ids begin with it: the vault's
+# kinematics, rigid, or the model file's name).
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 get_filename_component(spec_dir "${SPEC}" DIRECTORY)
@@ -19,6 +21,12 @@ foreach(i RANGE 0 220)
 endforeach()
 file(WRITE "${WORK}/runaway_pulse.txt" "${pulse}")
 file(COPY "${SPEC}" DESTINATION "${WORK}")
+if(MODEL)
+  file(COPY "${MODEL}" DESTINATION "${WORK}")
+endif()
+if(NOT PREFIX)
+  set(PREFIX rigid)
+endif()
 get_filename_component(spec_name "${SPEC}" NAME)
 set(spec "${WORK}/${spec_name}")
 
@@ -97,8 +105,8 @@ foreach(expected "missing_record_none,failed,[^\n]*missing_record.AT2" "runaway_
 endforeach()
 
 # Again: the finished cases are skipped and their files untouched; the failed ones run again (and fail again).
-file(TIMESTAMP "${WORK}/farm/cases/rigid_aqa75_none/history_25.csv" before "%Y-%m-%dT%H:%M:%S" UTC)
-file(SHA256 "${WORK}/farm/cases/rigid_aqa75_none/history_25.csv" hash_before)
+file(TIMESTAMP "${WORK}/farm/cases/${PREFIX}_aqa75_none/history_25.csv" before "%Y-%m-%dT%H:%M:%S" UTC)
+file(SHA256 "${WORK}/farm/cases/${PREFIX}_aqa75_none/history_25.csv" hash_before)
 execute_process(COMMAND ${CMAKE_COMMAND} -E sleep 1)
 run_sweep(second 1 ${launch} ${PROGRAM} sweep ${spec} --out ${WORK}/farm ${ARGS})
 string(REGEX MATCHALL "finished earlier, not run again" skipped "${second}")
@@ -106,7 +114,7 @@ list(LENGTH skipped n)
 if(NOT n EQUAL 2)
   message(FATAL_ERROR "expected the 2 finished cases skipped, saw ${n}:\n${second}")
 endif()
-file(TIMESTAMP "${WORK}/farm/cases/rigid_aqa75_none/history_25.csv" after "%Y-%m-%dT%H:%M:%S" UTC)
+file(TIMESTAMP "${WORK}/farm/cases/${PREFIX}_aqa75_none/history_25.csv" after "%Y-%m-%dT%H:%M:%S" UTC)
 if(NOT before STREQUAL after)
   message(FATAL_ERROR "a finished case was written again (${before} -> ${after})")
 endif()

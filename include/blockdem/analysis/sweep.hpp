@@ -51,7 +51,8 @@ inline constexpr const char* name(IntensityMeasure m) {
 /// the built-in synthetic AQA75 stand-in. `measured`: optional CSV of measured channels (analysis/error_metrics.hpp)
 /// that every case's history of the level `measured_level` (%, as its history file is labelled) is compared with.
 struct SweepSpec {
-  std::vector<VaultKinematics> kinematics{VaultKinematics::rigid};
+  std::string model;  // a model file (docs/model-file.md) whose structure every case studies; empty: the vault
+  std::vector<VaultKinematics> kinematics{VaultKinematics::rigid};  // the vault's only: a model file's blocks say theirs
   std::vector<std::string> records{""};
   std::vector<SweepScheme> schemes;
   std::vector<double> levels{25, 50, 75};
@@ -95,7 +96,7 @@ inline std::string record_tag(const std::string& path) {
 
 /// The cases of `spec`, each from the options `base` with its own values set, in this order (the outermost first):
 /// kinematics, record, scheme (in the order given), zeta, frequency or band, branches, level (not incremental).
-/// Ids read like `rigid_aqa75_maxwell_z0.03_b1-40_n3_L25` (kinematics, record, scheme, its parameters, level: `_L25`
+/// Ids read like `rigid_aqa75_maxwell_z0.03_b1-40_n3_L25` (kinematics or the model file's name, record, scheme, its parameters, level: `_L25`
 /// for 25 %, `_pga0.3g` or `_sa0.3g` for a target; incremental cases with targets end in `_pga` or `_sa`; the
 /// parameters a scheme does not use are left out, defaults marked `z-default` and so on). Throws InvalidArgument
 /// naming the field and its range if a list is empty, a value is out of range (VaultStudyOptions::validate on every
@@ -136,8 +137,12 @@ inline std::vector<SweepCase> expand_sweep(const SweepSpec& spec, const VaultStu
   std::set<std::string> ids;
   const std::vector<std::optional<double>> levels = spec.incremental ? std::vector<std::optional<double>>{std::nullopt}
                                                                       : or_default(spec.levels);
+  check(spec.model.empty() || spec.kinematics == std::vector<VaultKinematics>{VaultKinematics::rigid},
+        "kinematics: a model file's blocks say whether they are rigid or deformable; leave kinematics out");
+  // A model file's cases are named after its file, the vault's after their kinematics.
+  const std::string model_tag = spec.model.empty() ? "" : detail::record_tag(spec.model);
   for (const VaultKinematics kinematics : spec.kinematics)
-    for (const std::string& record : spec.records)
+    for (const std::string& given_record : spec.records)
       for (const SweepScheme& s : spec.schemes)
         for (const auto& zeta : or_default(s.zetas))
           for (const auto& frequency : or_default(s.frequencies_hz))
@@ -149,10 +154,13 @@ inline std::vector<SweepCase> expand_sweep(const SweepSpec& spec, const VaultStu
                   VaultStudyOptions& o = c.options;
                   o = base;
                   o.kinematics = kinematics;
+                  // "" is the base's record: a model file's own, or the vault's built-in stand-in.
+                  const std::string& record = given_record.empty() ? base.record_path : given_record;
                   o.record_path = record;
                   o.record.reset();
                   o.damping = s.scheme;
-                  std::string id = std::string(name(kinematics)) + "_" + detail::record_tag(record) + "_" + name(s.scheme);
+                  std::string id = (model_tag.empty() ? std::string(name(kinematics)) : model_tag) + "_" +
+                                   detail::record_tag(record) + "_" + name(s.scheme);
                   if (s.scheme != DampingScheme::none) {
                     o.zeta = zeta ? *zeta : 0.0;
                     id += zeta ? "_z" + detail::id_number(*zeta) : "_z-default";

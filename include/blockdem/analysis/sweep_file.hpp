@@ -5,10 +5,15 @@
 // The format (plain JSON: no comments, no trailing commas; every key optional but "schemes"):
 //
 //   {
-//     "kinematics": ["rigid", "mixed", "deformable"],  rigid | mixed | deformable; default ["rigid"]
-//     "records": ["", "records/RSN1_EW.AT2"],          record files (PEER .AT2, ESM ASCII, text); "" is the built-in
-//                                                      synthetic AQA75 stand-in; a relative path is taken relative to
-//                                                      the folder of the sweep file; default [""]
+//     "model": "wall.json",                            blockdem sweep: the model file (docs/model-file.md) every case
+//                                                      studies, relative to the sweep file's folder; its study gives
+//                                                      the base options; cross_vault sweep: leave it out (the vault)
+//     "kinematics": ["rigid", "mixed", "deformable"],  the vault's: rigid | mixed | deformable; default ["rigid"]; not
+//                                                      with a model file (its blocks say whether they deform)
+//     "records": ["", "records/RSN1_EW.AT2"],          record files (PEER .AT2, ESM ASCII, text); "" is the model
+//                                                      file's record, or for the vault the built-in synthetic AQA75
+//                                                      stand-in; a relative path is taken relative to the folder of
+//                                                      the sweep file; default [""]
 //     "levels": [25, 50, 75],                          % of each record; default [25, 50, 75]
 //     "pga_g": [0.1, 0.2, 0.4],                        or: targets of peak ground acceleration, g
 //     "sa_g": [0.1, 0.2], "sa_period_s": 0.3,          or: targets of the 5 %-damped Sa(T), g, and T in s
@@ -185,9 +190,15 @@ inline SweepSpec sweep_from_json(const io::JsonValue& root, const std::string& b
   if (!root.is_object())
     throw InvalidArgument(root.where() + ": a sweep file holds one JSON object {\"schemes\": [...], ...}, got " +
                           root.kind_name(root.kind()));
-  check_sweep_keys(root, "", {"kinematics", "records", "levels", "pga_g", "sa_g", "sa_period_s", "incremental",
+  check_sweep_keys(root, "", {"model", "kinematics", "records", "levels", "pga_g", "sa_g", "sa_period_s", "incremental",
                               "measured", "measured_level", "schemes"});
   SweepSpec spec;
+  if (const auto* v = root.find("model")) {
+    spec.model = sweep_path(*v, "model", base_dir);
+    if (spec.model.empty()) sweep_error(*v, "model", "give the model file's path, or leave \"model\" out for the vault");
+    if (const auto* k = root.find("kinematics"))
+      sweep_error(*k, "kinematics", "a model file's blocks say whether they are rigid or deformable; leave kinematics out");
+  }
   if (const auto* v = root.find("kinematics")) {
     constexpr std::array all{VaultKinematics::rigid, VaultKinematics::mixed, VaultKinematics::deformable};
     if (v->is_array() && v->as_array().empty())

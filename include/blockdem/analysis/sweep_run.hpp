@@ -1,17 +1,20 @@
 #pragma once
-// Running the cases of a sweep (analysis/sweep.hpp) and summing them up. Each case runs the vault study into its own
-// folder OUT/cases/<id>/ (the outputs of `cross_vault run`) and ends by writing OUT/cases/<id>/case.json: how it
+// Running the cases of a sweep (analysis/sweep.hpp) and summing them up. Each case runs its study (the vault's, or a
+// model file's structure: SweepRunOptions::study) into its own folder OUT/cases/<id>/ (the outputs of `cross_vault
+// run` or `blockdem run`) and ends by writing OUT/cases/<id>/case.json: how it
 // ended (done, failed with its message, interrupted) and its row of the summary. A case whose case.json says done,
 // under the same base options (the fingerprint), is not run again; a failed one is run afresh; an interrupted one
 // continues from its checkpoint. The summary (summary.csv, summary.json in OUT) is one row per case in the order of
 // the expansion, so it is the same however the cases were shared out (one process, MPI ranks, a job array).
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <numbers>
 #include <sstream>
 #include <string>
@@ -47,6 +50,15 @@ struct SweepRunOptions {
   std::string measured;     // CSV of measured channels (SweepSpec::measured); empty: no error metrics
   double measured_level = 0;  // % of the history compared (0: each case's last level)
   bool progress = true;     // each study's progress line
+  /// Runs a case's study: the vault's (run_vault_study) for `cross_vault sweep`, a model file's structure for
+  /// `blockdem sweep`. Must be set.
+  std::function<StudyResult(const VaultStudyOptions&)> study;
+  /// The two channels of the summary's peak and bias columns, and the monitor point of its residual displacement:
+  /// the vault's crown drift OC1-y and its accelerometer ACC18-y (Fig. 13); for a model file, its first monitor point
+  /// along the excitation's axis.
+  std::string displacement_channel = "OC1_uy", acceleration_channel = "ACC18_ay", residual_point = "OC1";
+  std::string program = "blockdem cross_vault sweep";  // summary.json's "program"
+  bool study_is_model = false;  // a model file's (the kinematics column says "model")
 };
 
 /// A case's line in the summary: how it ended and its row (CSV and JSON).
@@ -61,14 +73,23 @@ struct CaseRow {
 };
 
 /// The columns of summary.csv (units in the names; an empty field: not applicable or not measured). The peaks,
-/// damage and biases are those of the case's last level (the measured level for the biases). The wall time comes
-/// last: it is the one column that differs between two runs of the same sweep.
-inline constexpr const char* summary_header =
-    "index,id,status,message,kinematics,record,scheme,zeta,frequency_hz,band_lower_hz,band_upper_hz,branches,measure,"
-    "intensity_g,level_percent,input_pga_g,input_sa_g,steps,oc1_uy_max_mm,oc1_uy_min_mm,acc18_ay_max_m_s2,"
-    "acc18_ay_min_m_s2,residual_oc1_uy_mm,cracked,crushed,damaged,peak_bias_oc1_uy_percent,peak_bias_acc18_ay_percent,"
-    "bias_oc1_uy_max_percent,bias_oc1_uy_min_percent,bias_acc18_ay_max_percent,bias_acc18_ay_min_percent,"
-    "eps_rmsd_uy_percent,wall_seconds";
+/// damage and biases are those of the case's last level (the measured level for the biases), of the run's two
+/// channels (lower case in the names: oc1_uy_max_mm, acc18_ay_max_m_s2 for the vault). The wall time comes last: it
+/// is the one column that differs between two runs of the same sweep.
+inline std::string summary_header(const SweepRunOptions& run) {
+  auto lower = [](std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+  };
+  const std::string u = lower(run.displacement_channel), a = lower(run.acceleration_channel);
+  const std::string residual = lower(run.residual_point) + u.substr(std::min(u.size(), u.find_last_of('_')));
+  std::string h = "index,id,status,message,kinematics,record,scheme,zeta,frequency_hz,band_lower_hz,band_upper_hz,branches,"
+                  "measure,intensity_g,level_percent,input_pga_g,input_sa_g,steps,";
+  h += u + "_max_mm," + u + "_min_mm," + a + "_max_m_s2," + a + "_min_m_s2,residual_" + residual + "_mm,cracked,crushed,";
+  h += "damaged,peak_bias_" + u + "_percent,peak_bias_" + a + "_percent,bias_" + u + "_max_percent,bias_" + u +
+       "_min_percent,bias_" + a + "_max_percent,bias_" + a + "_min_percent,eps_rmsd_uy_percent,wall_seconds";
+  return h;
+}
 
 inline std::string case_folder(const SweepRunOptions& run, const SweepCase& c) { return run.out_dir + "/cases/" + c.id; }
 
@@ -130,9 +151,14 @@ inline std::vector<double> resolve_intensities(const SweepCase& c, const VaultSt
 namespace detail {
 
 /// The row of a case from its study (r: null if it failed before it had one).
-inline void fill_row(CaseRow& row, const SweepCase& c, const VaultStudyResult* r, const IntensityPerPercent& im,
-                     const std::vector<ChannelComparison>& compared, double eps_uy) {
+inline void fill_row(CaseRow& row, const SweepCase& c, const SweepRunOptions& run, const VaultStudyResult* r,
+                     const IntensityPerPercent& im, const std::vector<ChannelComparison>& compared, double eps_uy) {
+  const std::string& u_channel = run.displacement_channel;
+  const std::string& a_channel = run.acceleration_channel;
+  const char axis = u_channel.empty() ? 'y' : u_channel.back();
   const auto& o = c.options;
+  // A model file's blocks are rigid or deformable each: its cases say "model".
+  const std::string kinematics = run.study_is_model ? "model" : name(o.kinematics);
   const bool has_zeta = o.damping != DampingScheme::none;
   const bool has_frequency = o.damping == DampingScheme::mass || o.damping == DampingScheme::stiffness;
   const bool has_band = o.damping == DampingScheme::maxwell || o.damping == DampingScheme::rayleigh;
@@ -141,7 +167,7 @@ inline void fill_row(CaseRow& row, const SweepCase& c, const VaultStudyResult* r
   const double level = L ? L->level : nan;
   const std::size_t which = L ? r->levels.size() - 1 : 0;
   const double intensity = c.measure != IntensityMeasure::level && which < c.intensities.size() && L ? c.intensities[which] : nan;
-  auto peak = [&](const char* channel, bool max) {
+  auto peak = [&](const std::string& channel, bool max) {
     if (!L) return nan;
     for (const auto& p : L->peaks)
       if (p.name == channel) return max ? p.max : p.min;
@@ -150,16 +176,16 @@ inline void fill_row(CaseRow& row, const SweepCase& c, const VaultStudyResult* r
   auto residual_uy = [&] {
     if (!L) return nan;
     for (std::size_t p = 0; p < r->monitor_points.size() && p < L->residual_displacement.size(); ++p)
-      if (r->monitor_points[p] == "OC1") return L->residual_displacement[p].y();
+      if (r->monitor_points[p] == run.residual_point) return L->residual_displacement[p][axis - 'x'];
     return nan;
   };
-  auto channel = [&](const char* name) -> const ChannelComparison* {
+  auto channel = [&](const std::string& name) -> const ChannelComparison* {
     for (const auto& x : compared)
       if (x.channel == name) return &x;
     return nullptr;
   };
-  const ChannelComparison* oc1 = channel("OC1_uy");
-  const ChannelComparison* acc18 = channel("ACC18_ay");
+  const ChannelComparison* oc1 = channel(u_channel);
+  const ChannelComparison* acc18 = channel(a_channel);
   auto bias = [](const ChannelComparison* x, double ChannelComparison::*field) { return x ? x->*field : nan; };
   auto peak_bias = [](const ChannelComparison* x, double PeakErrors::*field) { return x ? x->peaks.*field : nan; };
   const long long steps = r ? [&] {
@@ -173,17 +199,17 @@ inline void fill_row(CaseRow& row, const SweepCase& c, const VaultStudyResult* r
       has_band ? o.upper_hz : nan, has_branches ? static_cast<double>(o.branches) : nan,
   };
   std::string csv = std::to_string(c.index) + "," + csv_text(c.id) + "," + name(row.status) + "," + csv_text(row.message) + "," +
-                    name(o.kinematics) + "," + csv_text(record_tag(o.record_path)) + "," + name(o.damping);
+                    kinematics + "," + csv_text(record_tag(o.record_path)) + "," + name(o.damping);
   for (double v : values) (csv += ',') += csv_number(v);  // (not "," + string: GCC 12 warns wrongly of an overlap)
   const double more[] = {intensity,
                          level,
                          L ? im.pga * level : nan,
                          L && c.measure == IntensityMeasure::sa ? im.sa * level : nan,
                          r ? static_cast<double>(steps) : nan,
-                         1e3 * peak("OC1_uy", true),
-                         1e3 * peak("OC1_uy", false),
-                         peak("ACC18_ay", true),
-                         peak("ACC18_ay", false),
+                         1e3 * peak(u_channel, true),
+                         1e3 * peak(u_channel, false),
+                         peak(a_channel, true),
+                         peak(a_channel, false),
                          1e3 * residual_uy(),
                          L ? static_cast<double>(L->damage.total.cracked) : count_nan,
                          L ? static_cast<double>(L->damage.total.crushed) : count_nan,
@@ -202,7 +228,7 @@ inline void fill_row(CaseRow& row, const SweepCase& c, const VaultStudyResult* r
 
   io::JsonObject j;
   j.add("index", static_cast<long long>(c.index)).add("id", c.id).add("status", name(row.status)).add("message", row.message)
-      .add("kinematics", name(o.kinematics)).add("record", o.record_path.empty() ? std::string("aqa75 (built-in)") : o.record_path)
+      .add("kinematics", kinematics).add("record", o.record_path.empty() ? std::string("aqa75 (built-in)") : o.record_path)
       .add("scheme", name(o.damping));
   if (has_zeta) j.add("zeta", o.scheme_zeta());
   if (has_frequency) j.add("frequency_hz", o.frequency_hz);
@@ -218,7 +244,7 @@ inline void fill_row(CaseRow& row, const SweepCase& c, const VaultStudyResult* r
       const auto& l = r->levels[k];
       io::JsonObject q, peaks;
       for (const auto& p : l.peaks) {
-        if (p.name != "OC1_uy" && p.name != "ACC18_ay" && p.name != "OC1_ux") continue;
+        if (p.name != u_channel && p.name != a_channel && p.name != run.residual_point + "_ux") continue;
         io::JsonObject m;
         m.add("max", p.max).add("min", p.min);
         peaks.add(p.name, m);
@@ -328,7 +354,8 @@ inline CaseRow run_sweep_case(const SweepCase& c, const SweepRunOptions& run, co
   try {
     im = detail::intensity_per_percent(c, o);
     o.levels = resolve_intensities(c, o, im);
-    result = run_vault_study(o);
+    if (!run.study) throw std::logic_error("SweepRunOptions::study is not set");
+    result = run.study(o);
     ran = true;
     row.status = result.interrupted ? CaseStatus::interrupted : CaseStatus::done;
     if (result.interrupted) row.message = "stopped; the next run of the sweep continues it from its checkpoint";
@@ -344,10 +371,12 @@ inline CaseRow run_sweep_case(const SweepCase& c, const SweepRunOptions& run, co
     if (!run.measured.empty() && !result.interrupted && (!collapsed || level_run)) {
       const auto simulated = read_csv_table(dir + "/history_" + detail::level_label(level) + ".csv");
       compared = compare_tables(simulated, read_csv_table(run.measured));
-      try {
-        eps_uy = mean_rmsd_error_percent(compared, "_uy");
-      } catch (const InvalidArgument& e) {  // the measurement lacks a camera of eq. 27: the row says so
-        row.message += std::string(row.message.empty() ? "" : "; ") + "eps_rmsd_uy not computed: " + e.what();
+      if (!run.study_is_model) {  // eq. 27-28 average the vault's cameras OC1, OC2, OC4
+        try {
+          eps_uy = mean_rmsd_error_percent(compared, "_uy");
+        } catch (const InvalidArgument& e) {  // the measurement lacks a camera of eq. 27: the row says so
+          row.message += std::string(row.message.empty() ? "" : "; ") + "eps_rmsd_uy not computed: " + e.what();
+        }
       }
     }
   } catch (const InvalidArgument& e) {  // the case's input: an option, a record, a target the record cannot reach
@@ -367,7 +396,7 @@ inline CaseRow run_sweep_case(const SweepCase& c, const SweepRunOptions& run, co
   if (ran) row.wall_seconds = result.wall_seconds;
   SweepCase resolved = c;
   resolved.options.levels = o.levels;
-  detail::fill_row(row, resolved, ran ? &result : nullptr, im, compared, eps_uy);
+  detail::fill_row(row, resolved, run, ran ? &result : nullptr, im, compared, eps_uy);
   std::error_code ignored;
   std::filesystem::create_directories(dir, ignored);
   try {
@@ -386,14 +415,14 @@ inline CaseRow recorded_row(const SweepCase& c, const SweepRunOptions& run) {
   CaseRow row;
   row.index = c.index;
   row.id = c.id;
-  detail::fill_row(row, c, nullptr, {}, {}, detail::nan);
+  detail::fill_row(row, c, run, nullptr, {}, {}, detail::nan);
   return row;
 }
 
 /// Writes OUT/summary.csv and OUT/summary.json (atomically) from the rows, one per case, in case order.
 inline void write_summary(const SweepRunOptions& run, const std::vector<CaseRow>& rows) {
   io::write_atomically(run.out_dir + "/summary.csv", [&](std::ostream& out) {
-    out << summary_header << '\n';
+    out << summary_header(run) << '\n';
     for (const auto& r : rows) out << r.csv << '\n';
   });
   std::size_t done = 0, failed = 0, pending = 0;
@@ -406,7 +435,7 @@ inline void write_summary(const SweepRunOptions& run, const std::vector<CaseRow>
   for (std::size_t i = 0; i < rows.size(); ++i) cases += (i ? ",\n" : "\n") + rows[i].json;
   cases += "\n]";
   io::JsonObject j;
-  j.add("program", "blockdem cross_vault sweep").add("cases", static_cast<long long>(rows.size()))
+  j.add("program", run.program).add("cases", static_cast<long long>(rows.size()))
       .add("done", static_cast<long long>(done)).add("failed", static_cast<long long>(failed))
       .add("not_finished", static_cast<long long>(pending)).add("measured", run.measured).add_raw("rows", cases);
   io::write_atomically(run.out_dir + "/summary.json", [&](std::ostream& out) { out << j.str() << '\n'; });

@@ -1,10 +1,12 @@
 #pragma once
-// `cross_vault sweep`: many vault analyses from a sweep file (analysis/sweep_file.hpp), under MPI when the program
-// was built with it (every rank computes, rank 0 included), else one after another; the logic is in
-// analysis/sweep_run.hpp and parallel/.
+// The sweep commands, `cross_vault sweep` (the vault) and `blockdem sweep` (a model file): many studies from a sweep
+// file (analysis/sweep_file.hpp), under MPI when the program was built with it (every rank computes, rank 0
+// included), else one after another; the logic is in analysis/sweep_run.hpp and parallel/.
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
+#include <functional>
 #include <set>
 #include <string>
 #include <vector>
@@ -15,6 +17,7 @@
 #include "blockdem/analysis/sweep_file.hpp"
 #include "blockdem/analysis/sweep_run.hpp"
 #include "blockdem/parallel/task_farm.hpp"
+#include "cli.hpp"
 #if defined(BLOCKDEM_WITH_MPI)
 #include "blockdem/parallel/mpi_farm.hpp"
 #endif
@@ -22,24 +25,20 @@
 #include <omp.h>
 #endif
 
-namespace {  // a part of cross_vault.cpp, after its RunCommand
+namespace blockdem::programs {
 
-/// The options of `cross_vault sweep`: the sweep file, the base options of every case (those of `cross_vault run`)
-/// and what to run.
+/// The options of a sweep command besides the base options of every case (those of the program's `run`): the sweep
+/// file and what to run.
 struct SweepCommand {
-  RunCommand base;
   std::string spec;
   long long single_case = -1;
   bool list = false, summarize = false;
   CLI::App* app = nullptr;
+  CLI::Option* spec_option = nullptr;
 
-  void add_to(CLI::App& sweep) {
+  void add_to(CLI::App& sweep, const std::string& spec_help) {
     app = &sweep;
-    base.add_to(sweep);
-    base.study.out_dir = "vault_sweep";
-    base.out->description("the sweep's folder: cases/<id>/ per case, summary.csv and summary.json")->default_str("vault_sweep");
-    sweep.add_option("spec", spec, "the sweep file (JSON: damping schemes and their grids, records, levels or intensity targets, "
-                                 "kinematics; see analysis/sweep_file.hpp)")->required();
+    spec_option = sweep.add_option("spec", spec, spec_help)->required();
     sweep.add_option("--case", single_case, "run only case K of the expansion (0-based, see --list), e.g. as one task of a job array");
     sweep.add_flag("--list", list, "print the cases (index and id) and stop");
     sweep.add_flag("--summarize", summarize, "write the summary from the case folders as they are, running nothing");
@@ -50,16 +49,16 @@ struct SweepCommand {
   void refuse_grid_options() const {
     for (const char* option : {"--levels", "--record", "--damping", "--zeta", "--frequency", "--band", "--branches",
                                "--kinematics", "--resume", "--stop-after-steps"})
-      if (app->count(option) > 0)
-        throw blockdem::InvalidArgument(std::string("sweep: ") + option +
-                                        " is not a base option: the sweep file gives the records, levels (or pga_g, sa_g), "
-                                        "schemes with their parameters and kinematics of each case, and a sweep run again "
-                                        "continues its interrupted cases by itself");
+      if (app->get_option_no_throw(option) && app->count(option) > 0)
+        throw InvalidArgument(std::string("sweep: ") + option +
+                              " is not a base option: the sweep file gives the records, levels (or pga_g, sa_g), "
+                              "schemes with their parameters (and the vault's kinematics) of each case, and a sweep run "
+                              "again continues its interrupted cases by itself");
   }
 
   /// What must match for a finished case to be taken as it is: the command line less what only steers the sweep,
-  /// and the sweep file's comparison.
-  std::string fingerprint(int argc, char** argv, const blockdem::analysis::SweepSpec& s) const {
+  /// the sweep file's comparison and `more` (a model file's text).
+  std::string fingerprint(int argc, char** argv, const analysis::SweepSpec& s, const std::string& more = "") const {
     static const std::set<std::string> flags{"--quiet", "--list", "--summarize", "--json"};
     static const std::set<std::string> with_value{"--out", "--case"};
     std::string f;
@@ -72,31 +71,24 @@ struct SweepCommand {
       }
       (f += a) += ' ';
     }
-    return f + "| measured " + s.measured + " at " + blockdem::io::JsonObject::number(s.measured_level);
+    f += "| measured " + s.measured + " at " + io::JsonObject::number(s.measured_level);
+    if (!more.empty()) f += " | model " + std::to_string(std::hash<std::string>{}(more));
+    return f;
   }
 };
 
-inline void print_sweep_rows(const std::vector<blockdem::analysis::CaseRow>& rows) {
-  using namespace blockdem::analysis;
+inline void print_sweep_rows(const std::vector<analysis::CaseRow>& rows) {
+  using namespace analysis;
   fmt::print("{:>5}  {:<44} {:<11} {:>9}  {}\n", "case", "id", "status", "wall s", "message");
   for (const auto& r : rows)
     fmt::print("{:>5}  {:<44} {:<11} {:>9.1f}  {}\n", r.index, r.id, std::string(name(r.status)) + (r.skipped ? "*" : ""),
                r.wall_seconds, r.message);
 }
 
-inline int run_sweep_command(SweepCommand& command, int argc, char** argv) {
-  using namespace blockdem;
-  command.refuse_grid_options();
-  command.base.finish();
-  auto& base = command.base.study;
-  const analysis::SweepSpec spec = analysis::read_sweep_file(command.spec);
-  const auto cases = analysis::expand_sweep(spec, base);
-  analysis::SweepRunOptions run;
-  run.out_dir = base.out_dir;
-  run.fingerprint = command.fingerprint(argc, argv, spec);
-  run.measured = spec.measured;
-  run.measured_level = spec.measured_level;
-  run.progress = base.progress;
+/// Runs a sweep command: lists, summarizes, runs one case (--case) or all of them on the farm. `program` names the
+/// program in messages ("cross_vault sweep").
+inline int run_sweep_command(const char* program, const SweepCommand& command, const std::vector<analysis::SweepCase>& cases,
+                             analysis::SweepRunOptions run, int argc, char** argv) {
   if (command.list) {
     for (const auto& c : cases) fmt::print("{:>5}  {}\n", c.index, c.id);
     return 0;
@@ -126,6 +118,8 @@ inline int run_sweep_command(SweepCommand& command, int argc, char** argv) {
   MPI_Init(&argc, &argv);
   parallel::MpiFarm farm;
 #else
+  (void)argc;
+  (void)argv;
   parallel::SerialFarm farm;
 #endif
   if (farm.size() > 1) {
@@ -160,7 +154,7 @@ inline int run_sweep_command(SweepCommand& command, int argc, char** argv) {
       status = failed + unfinished > 0 ? 1 : 0;
     }
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "cross_vault sweep: error on rank %d: %s\n", farm.rank(), e.what());
+    std::fprintf(stderr, "%s: error on rank %d: %s\n", program, farm.rank(), e.what());
 #if defined(BLOCKDEM_WITH_MPI)
     if (farm.size() > 1) MPI_Abort(MPI_COMM_WORLD, 2);
 #endif
@@ -172,4 +166,4 @@ inline int run_sweep_command(SweepCommand& command, int argc, char** argv) {
   return status;
 }
 
-}  // namespace
+}  // namespace blockdem::programs
