@@ -108,8 +108,10 @@ struct RunCommand {
                r.model.contact_points, r.model.free_mass);
     fmt::print("settling: {} steps, unbalanced force ratio {:.2e}{}, {:.1f} s\n", r.settling.steps, r.settling.unbalanced_ratio,
                r.settling.converged ? "" : " (NOT converged)", r.settling.wall_seconds);
-    fmt::print("damping: {}\ntimestep: {:.3e} s; density scaling adds {:.3f} % of the mass\n", r.damping.description, r.timestep.dt,
+    fmt::print("damping: {}{}\ntimestep: {:.3e} s; density scaling adds {:.3f} % of the mass\n", r.damping.description,
+               r.damping.frame.empty() ? std::string() : fmt::format(", in the {} frame", r.damping.frame), r.timestep.dt,
                r.timestep.scaling.mass_increase_percent);
+    for (const auto& w : r.warnings) fmt::print("warning: {}\n", w);
     const char axis = study.axis;
     for (const auto& L : r.levels) {
       std::string peaks;

@@ -154,7 +154,8 @@ int run_study(RunCommand& command) {
   fmt::print("settling: {} steps, unbalanced force ratio {:.2e}{}, {:.1f} s; damaged joints once settled {} (cracked {}, crushed {})\n",
              r.settling.steps, r.settling.unbalanced_ratio, r.settling.converged ? "" : " (NOT converged)", r.settling.wall_seconds,
              r.settling.damaged_joints, r.settling.cracked_joints, r.settling.crushed_joints);
-  fmt::print("damping: {}\n", r.damping.description);
+  fmt::print("damping: {}{}\n", r.damping.description, r.damping.frame.empty() ? std::string() : fmt::format(", in the {} frame", r.damping.frame));
+  for (const auto& w : r.warnings) fmt::print("warning: {}\n", w);
   if (r.free_vibration.measured)
     fmt::print("free vibration at OC1: {:.2f} Hz, damping ratio {:.4f} (the scheme's at that frequency: {:.4f})\n",
                r.free_vibration.decay.frequency_hz, r.free_vibration.decay.damping_ratio, r.free_vibration.expected_damping_ratio);

@@ -21,6 +21,7 @@ struct StudyCommand {
   std::string units, truncation = "window", axis = "y";
   std::vector<double> window{0, 15}, band{1, 40};
   bool quiet = false, json = false;
+  CLI::App* command_app = nullptr;  // the (sub)command the options belong to
   CLI::Option* out = nullptr;
   CLI::Option *units_option = nullptr, *truncation_option = nullptr, *axis_option = nullptr, *window_option = nullptr,
               *band_option = nullptr;
@@ -29,6 +30,7 @@ struct StudyCommand {
   /// vault", "the structure").
   void add_to(CLI::App& app, analysis::StudyOptions& o, const std::string& subject) {
     using analysis::DampingScheme;
+    command_app = &app;
     out = app.add_option("--out", o.out_dir, "output folder (created if missing; with --resume: the checkpoint's folder)")
               ->capture_default_str();
     app.add_option("--record", o.record_path, "acceleration record (PEER .AT2, ESM ASCII, text)");
@@ -54,6 +56,11 @@ struct StudyCommand {
     app.add_option("--frequency", o.frequency_hz, "mass: centre frequency; stiffness: frequency of --zeta, Hz");
     band_option = app.add_option("--band", band, "maxwell: the band of the fit; rayleigh: its two frequencies, Hz")->expected(2);
     app.add_option("--branches", o.branches, "maxwell: number of branches, 1..4");
+    app.add_option("--damping-frame", o.damping_frame,
+                   "mass, rayleigh: damp velocities relative to the table (a fixed-base model, the default) or to the ground "
+                   "(absolute: 3DEC's and the paper's, where the moving table drags the structure)")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, damping::Frame>{{"table", damping::Frame::table},
+                                                                                  {"absolute", damping::Frame::absolute}}));
     app.add_option("--target-dt", o.target_dt, "timestep of the dynamic run, s: above the unscaled one by partial density scaling, "
                                                "below it as given (0: the largest whose density scaling adds at most --mass-increase % of the mass)");
     app.add_option("--mass-increase", o.default_mass_increase_percent, "mass that the automatic timestep may add by density scaling, %");
@@ -103,6 +110,9 @@ struct StudyCommand {
       o.upper_hz = band[1];
     }
     o.progress = !quiet;
+    o.given_known = true;
+    for (const CLI::Option* option : command_app->get_options())
+      if (option->count() > 0 && option->get_name().starts_with("--")) o.given.insert(option->get_name());
     if (!o.resume.empty() && out->count() == 0) {
       const auto folder = std::filesystem::path(o.resume).parent_path();
       o.out_dir = folder.empty() ? std::string(".") : folder.string();

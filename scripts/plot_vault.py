@@ -23,6 +23,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np
 
 COLOURS = {"none": "tab:green", "mass": "tab:blue", "maxwell": "tab:red", "stiffness": "tab:purple", "rayleigh": "tab:orange"}
+GROUND_FRAME_COLOURS = {"mass": "tab:cyan", "rayleigh": "tab:brown"}
 NAMES = {"none": "noDamp", "mass": "MassProp", "maxwell": "Maxwell", "stiffness": "StiffProp", "rayleigh": "Rayleigh"}
 
 
@@ -38,6 +39,12 @@ class Run:
         self.scheme = self.report["damping"]["scheme"]
         self.label = NAMES.get(self.scheme, self.scheme)
         self.colour = COLOURS.get(self.scheme)
+        # The frame of a mass-proportional term (docs/damping.md): the table's, or the ground's as in 3DEC.
+        frame = self.report["damping"].get("frame", "")
+        if frame:
+            self.label += f" ({frame} frame)"
+            if frame == "absolute":
+                self.colour = GROUND_FRAME_COLOURS.get(self.scheme, self.colour)
         self.synthetic = self.report["input"]["synthetic"]
         self.levels = [level["level_percent"] for level in self.report["levels"]]
 

@@ -132,7 +132,7 @@ inline void read_study(const io::JsonFields& top, StudyOptions& o, RecordScale& 
     }
     o.rest = f.number("rest_s", o.rest, {0, 600, false, false, "s"});
     if (const auto* d = f.find("damping")) {
-      const io::JsonFields g(*d, "study.damping", {"scheme", "zeta", "frequency_hz", "band_hz", "branches"});
+      const io::JsonFields g(*d, "study.damping", {"scheme", "zeta", "frequency_hz", "band_hz", "branches", "frame"});
       o.damping = g.choice<DampingScheme>("scheme", o.damping, {{"none", DampingScheme::none}, {"mass", DampingScheme::mass},
                                                                 {"stiffness", DampingScheme::stiffness}, {"rayleigh", DampingScheme::rayleigh},
                                                                 {"maxwell", DampingScheme::maxwell}});
@@ -144,11 +144,18 @@ inline void read_study(const io::JsonFields& top, StudyOptions& o, RecordScale& 
         o.upper_hz = io::number_value(pair[1], "study.damping.band_hz[1]", {o.lower_hz, 1000, true, false, "Hz"});
       }
       o.branches = static_cast<int>(integer(g, "branches", o.branches, {1, max_study_branches, false, false, ""}));
+      for (const auto& [key, option] : {std::pair{"zeta", "--zeta"}, {"band_hz", "--band"}, {"branches", "--branches"}})
+        if (g.find(key)) o.given.insert(option);
+      o.damping_frame = g.choice<damping::Frame>("frame", o.damping_frame,
+                                                 {{"table", damping::Frame::table}, {"absolute", damping::Frame::absolute}});
     }
     if (const auto* t = f.find("timestep")) {
       const io::JsonFields g(*t, "study.timestep", {"target_dt_s", "mass_increase_percent", "max_mass_increase_percent"});
       o.target_dt = g.number("target_dt_s", o.target_dt, {0, 0.01, false, true, "s"});
       o.max_mass_increase_percent = g.number("max_mass_increase_percent", o.max_mass_increase_percent, {0, 1000, false, false, "%"});
+      for (const auto& [key, option] : {std::pair{"mass_increase_percent", "--mass-increase"},
+                                        {"max_mass_increase_percent", "--max-mass-increase"}})
+        if (g.find(key)) o.given.insert(option);
       o.default_mass_increase_percent = g.number("mass_increase_percent", o.default_mass_increase_percent,
                                                  {0, o.max_mass_increase_percent, false, false, "%"});
     }
@@ -165,6 +172,11 @@ inline void read_study(const io::JsonFields& top, StudyOptions& o, RecordScale& 
     o.runaway_displacement = f.number("runaway_displacement_m", o.runaway_displacement, {0.001, 1e6, false, false, "m"});
     o.collapse_displacement = f.number("collapse_displacement_m", o.collapse_displacement, {0.001, o.runaway_displacement, false, false, "m"});
     o.max_speed = f.number("max_speed_m_s", o.max_speed, {0.1, 1e6, false, false, "m/s"});
+    // What the file gives, under the names messages use (StudyOptions::given).
+    o.given_known = true;
+    for (const auto& [key, option] : {std::pair{"runaway_displacement_m", "--runaway-displacement"},
+                                      {"collapse_displacement_m", "--collapse-displacement"}, {"max_speed_m_s", "--max-speed"}})
+      if (f.find(key)) o.given.insert(option);
     o.free_vibration = f.boolean("free_vibration", o.free_vibration);
   }
 }

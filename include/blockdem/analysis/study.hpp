@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "blockdem/analysis/damage_memory.hpp"
+#include "blockdem/analysis/corner_point_warnings.hpp"
 #include "blockdem/analysis/free_decay.hpp"
 #include "blockdem/analysis/structure.hpp"
 #include "blockdem/analysis/study_checkpoint.hpp"
@@ -141,8 +142,8 @@ void check_runaway(const History& history, const StudyOptions& o, const std::str
                     level.c_str(), t_in_level, names[p].c_str());
     else
       std::snprintf(text, sizeof text, "level %s %%: %s moved %.3g m from where it settled, %.4f s into the level, beyond "
-                    "--runaway-displacement %.3g m: the run diverged or the block fell off the table", level.c_str(), names[p].c_str(), d,
-                    t_in_level, o.runaway_displacement);
+                    "--runaway-displacement %.3g m%s: the run diverged or the block fell off the table", level.c_str(), names[p].c_str(), d,
+                    t_in_level, o.runaway_displacement, o.default_note("--runaway-displacement").c_str());
     throw RunawayError(text);
   }
 }
@@ -194,9 +195,9 @@ decltype(auto) with_damping_policy(const StudyOptions& o, std::string& descripti
   fit_options.branches = o.branches;
   const auto fit = damping::fit_maxwell(fit_options);
   if (!fit.converged)
-    throw InvalidArgument(o.context + ": the Maxwell fit of " + num(100 * z) + " % over " + num(o.lower_hz) + "-" +
-                          num(o.upper_hz) + " Hz with " +
-                          std::to_string(o.branches) + " branches did not converge");
+    throw InvalidArgument(o.context + ": the Maxwell fit of " + num(100 * z) + " %" + o.default_note("--zeta") + " over " +
+                          num(o.lower_hz) + "-" + num(o.upper_hz) + " Hz" + o.default_note("--band") + " with " +
+                          std::to_string(o.branches) + " branches" + o.default_note("--branches") + " did not converge");
   std::snprintf(text, sizeof text, "Maxwell, %.3g %% over %.4g-%.4g Hz, %d branches (band error %+.2f %% / %+.2f %%)", 100 * z,
                 o.lower_hz, o.upper_hz, o.branches, 100 * fit.rel_error_min, 100 * fit.rel_error_max);
   description = text;
@@ -258,6 +259,7 @@ void with_settled_structure(Structure& s, const StudyOptions& o, StudyResult& r,
   with_damping_policy(o, description, [&]<class D>(D policy) {
     r.damping.description = description;
     r.damping.scheme = name(o.damping);
+    if constexpr (damping::damps_velocities<D>()) r.damping.frame = name(o.damping_frame);
     using Settle = StudySimulation<damping::Local>;
     using Dynamic = StudySimulation<D>;
     model::ContactSettings contacts = s.contacts;
@@ -265,6 +267,9 @@ void with_settled_structure(Structure& s, const StudyOptions& o, StudyResult& r,
     s.laws.fill(contacts);
     Settle settle(model, damping::Local{}, detail::structure_properties<Settle>(s), contacts);
     r.model.contact_points = settle.contact_points();
+    r.warnings = corner_point_warnings(s, contacts, settle);
+    if (o.progress)
+      for (const auto& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     // The timestep of the dynamic run, chosen before settling so that a bad target is refused at once.
     auto factor = [&](double omega) { return policy.timestep_factor(omega); };
     const double free_mass = r.model.free_mass;
@@ -306,6 +311,7 @@ void with_settled_structure(Structure& s, const StudyOptions& o, StudyResult& r,
     }
 
     Dynamic sim(settle, policy);
+    sim.set_damping_frame(o.damping_frame);
     if (!resuming && target < sim.timestep()) sim.set_timestep(target);  // a --target-dt below the unscaled one: run at it
     if (!resuming && target > sim.timestep()) {
       const std::vector<double> real_mass = model.bodies.mass, real_node_mass = model.deformable.nodes.mass;
@@ -405,7 +411,7 @@ inline StudyResult run_study(Structure s, const StudyOptions& o) {
   const bool resuming = !o.resume.empty();
   // A checkpoint that cannot be used is refused before any work: its header now, its model and checksum below.
   if (resuming) (void)io::read_checkpoint_header(o.resume);
-  if (!o.out_dir.empty()) detail::prepare_output_folder(o.out_dir, resuming);
+  if (!o.out_dir.empty()) detail::prepare_output_folder(o.out_dir, resuming, o.default_note("--out"));
 
   const motion::Record cut = detail::input_record(o, r.input.cut);
   r.input.name = cut.name;
@@ -569,8 +575,9 @@ inline StudyResult run_study(Structure s, const StudyOptions& o) {
       if (L.collapse.collapsed) {
         if (o.progress)
           std::fprintf(stderr, "level %s %%: the structure collapsed %.3f s into the level (%s moved %.3g m, beyond "
-                       "--collapse-displacement %.3g m); no further level runs\n", label.c_str(), L.collapse.time,
-                       L.collapse.point.c_str(), L.collapse.displacement, o.collapse_displacement);
+                       "--collapse-displacement %.3g m%s); no further level runs\n", label.c_str(), L.collapse.time,
+                       L.collapse.point.c_str(), L.collapse.displacement, o.collapse_displacement,
+                       o.default_note("--collapse-displacement").c_str());
         break;
       }
     }

@@ -40,7 +40,7 @@ inline constexpr const char* study_checkpoint_file = "checkpoint.bin";
 /// progress, checkpoint interval and stop are left out: a run may be resumed with other ones.
 inline std::uint64_t study_hash(const StudyOptions& o, const Structure& s, const motion::Record& cut) {
   io::Hasher h;
-  h.add("blockdem study, checkpoint layout 3");
+  h.add("blockdem study, checkpoint layout 4");
   const model::Model& m = s.model;
   auto add_points = [&h](const std::vector<Vec3>& points) {
     h.add(static_cast<std::uint64_t>(points.size()));
@@ -74,7 +74,7 @@ inline std::uint64_t study_hash(const StudyOptions& o, const Structure& s, const
   h.add(s.table.has_value()).add(s.table.value_or(0));
   h.add(cut.dt).add(cut.start_time).add(cut.acceleration);
   h.add(o.axis).add(o.record_level).add(o.levels).add(o.rest).add(o.collapse_displacement);
-  h.add(static_cast<int>(o.damping)).add(o.scheme_zeta()).add(o.frequency_hz).add(o.lower_hz).add(o.upper_hz).add(o.branches);
+  h.add(static_cast<int>(o.damping)).add(static_cast<int>(o.damping_frame)).add(o.scheme_zeta()).add(o.frequency_hz).add(o.lower_hz).add(o.upper_hz).add(o.branches);
   h.add(o.target_dt).add(o.default_mass_increase_percent).add(o.settle_tolerance).add(o.settle_max_steps);
   h.add(o.free_vibration).add(o.history_dt).add(o.snapshots_every);
   h.add(static_cast<int>(o.contacts));

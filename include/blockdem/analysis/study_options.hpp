@@ -7,13 +7,16 @@
 #include <cmath>
 #include <functional>
 #include <optional>
+#include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "blockdem/core/error.hpp"
 #include "blockdem/model/contact_detection.hpp"
 #include "blockdem/core/number_text.hpp"
 #include "blockdem/core/types.hpp"
+#include "blockdem/damping/frame.hpp"
 #include "blockdem/motion/baseline.hpp"
 #include "blockdem/motion/readers.hpp"
 #include "blockdem/motion/record.hpp"
@@ -65,6 +68,9 @@ struct StudyOptions {
   double frequency_hz = 7.5;               // mass: centre of MassProp; stiffness: where zeta is met
   double lower_hz = 1, upper_hz = 40;      // maxwell: the band; rayleigh: the two frequencies
   int branches = 3;                        // maxwell
+  // mass, rayleigh: the frame of the mass-proportional term (damping/frame.hpp): the table's (a fixed-base model
+  // under effective earthquake forces) or the ground's (3DEC's and the paper's: the moving table drags the structure).
+  damping::Frame damping_frame = damping::Frame::table;
 
   // Timestep (eq. 1-3, 11, 20) and partial density scaling (Sect. 3.2).
   double target_dt = 0;                    // s; 0: the largest timestep whose density scaling adds at most
@@ -113,6 +119,16 @@ struct StudyOptions {
   long long stop_after_steps = 0;          // stop (as if interrupted) once the dynamic run has taken this many
                                            // steps in total, leaving a checkpoint; 0: never
 
+  /// The options the user gave, by their command-line names ("--zeta"), from the command line or a model file
+  /// (`given_known` then true): a message that names one the user did not give says it is the default. Options set
+  /// in code are not tracked (given_known false): their messages say nothing of defaults.
+  std::set<std::string, std::less<>> given;
+  bool given_known = false;
+  /// " (the default)" if the user is known not to have given `option`, else "".
+  std::string default_note(std::string_view option) const {
+    return given_known && !given.contains(option) ? " (the default)" : "";
+  }
+
   double scheme_zeta() const {
     if (zeta > 0) return zeta;
     return damping == DampingScheme::mass ? 0.04 : 0.03;
@@ -139,7 +155,9 @@ struct StudyOptions {
           "--branches must be in 1.." + std::to_string(max_study_branches) + ", got " + std::to_string(branches));
     check(target_dt >= 0 && target_dt < 1e-2 && std::isfinite(target_dt), "--target-dt must be in [0, 0.01) s (0: automatic), got " + num(target_dt));
     check(default_mass_increase_percent >= 0 && default_mass_increase_percent <= max_mass_increase_percent,
-          "the automatic density scaling must add in [0, --max-mass-increase] % of the mass");
+          "--mass-increase must be in [0, --max-mass-increase " + num(max_mass_increase_percent) +
+              default_note("--max-mass-increase") + "] %, got " + num(default_mass_increase_percent) +
+              default_note("--mass-increase"));
     check(max_mass_increase_percent >= 0 && max_mass_increase_percent <= 1000,
           "--max-mass-increase must be in [0, 1000] %, got " + num(max_mass_increase_percent));
     check(settle_tolerance > 0 && settle_tolerance < 1, "--settle-tolerance must be in (0, 1), got " + num(settle_tolerance));
@@ -152,8 +170,9 @@ struct StudyOptions {
     check(runaway_displacement >= 0.001 && runaway_displacement <= 1e6,
           "--runaway-displacement must be in [0.001, 1e6] m, got " + num(runaway_displacement));
     check(collapse_displacement >= 0.001 && collapse_displacement <= runaway_displacement,
-          "--collapse-displacement must be in [0.001, --runaway-displacement " + num(runaway_displacement) + "] m, got " +
-              num(collapse_displacement));
+          "--collapse-displacement must be in [0.001, --runaway-displacement " + num(runaway_displacement) +
+              default_note("--runaway-displacement") + "] m, got " + num(collapse_displacement) +
+              default_note("--collapse-displacement"));
     check(max_speed >= 0.1 && max_speed <= 1e6, "--max-speed must be in [0.1, 1e6] m/s, got " + num(max_speed));
     check(snapshots_every >= 0 && snapshots_every <= 100, "--snapshots-every must be in [0, 100] s, got " + num(snapshots_every));
   }

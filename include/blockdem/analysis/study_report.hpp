@@ -149,6 +149,7 @@ struct StudyResult {
   SettlingResult settling;
   struct {
     std::string scheme, description;
+    std::string frame;  // of its mass-proportional term (damping/frame.hpp); empty for a scheme without one
   } damping;
   struct AddedMass {
     long long blocks = 0, nodes = 0;
@@ -176,6 +177,7 @@ struct StudyResult {
   } timestep;
   FreeVibrationResult free_vibration;       // if options.free_vibration
   std::vector<std::string> monitor_points;  // names, in the order of the histories' columns
+  std::vector<std::string> warnings;  // about the model as the study found it (analysis/corner_point_warnings.hpp)
   std::vector<LevelResult> levels;
   bool interrupted = false;
   double wall_seconds = 0;
@@ -210,16 +212,16 @@ inline std::string table4(const StudyResult& r) {
 namespace detail {
 
 /// Creates the output folder and checks that a file can be written in it; a fresh run (not `resuming`) removes the
-/// report of an earlier one.
-inline void prepare_output_folder(const std::string& dir, bool resuming = false) {
+/// report of an earlier one. `note` follows the folder's name in messages (" (the default)").
+inline void prepare_output_folder(const std::string& dir, bool resuming = false, const std::string& note = "") {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
   if (error || !std::filesystem::is_directory(dir))
-    throw InvalidArgument("--out: cannot create the output folder '" + dir + "'" + (error ? ": " + error.message() : std::string()));
+    throw InvalidArgument("--out: cannot create the output folder '" + dir + "'" + note + (error ? ": " + error.message() : std::string()));
   const std::string probe = dir + "/.blockdem_write_test";
   {
     std::ofstream out(probe);
-    if (!(out << "ok")) throw InvalidArgument("--out: cannot write in the output folder '" + dir + "'");
+    if (!(out << "ok")) throw InvalidArgument("--out: cannot write in the output folder '" + dir + "'" + note);
   }
   std::filesystem::remove(probe, error);
   // A report left by an earlier run would look like this run's until this one writes its own.
@@ -262,7 +264,7 @@ inline std::string report_json(const StudyResult& r) {
       .add("converged", r.settling.converged).add("static_mass_scaling_dt_s", r.settling.dt)
       .add("damaged_contact_points", r.settling.damaged_joints).add("cracked_contact_points", r.settling.cracked_joints)
       .add("crushed_contact_points", r.settling.crushed_joints);
-  damping.add("scheme", r.damping.scheme).add("description", r.damping.description);
+  damping.add("scheme", r.damping.scheme).add("description", r.damping.description).add("frame", r.damping.frame);
   JsonObject where;
   for (std::size_t g = 0; g < r.timestep.added_by_group.size() && g < r.model.groups.size(); ++g) {
     const auto& a = r.timestep.added_by_group[g];
@@ -333,6 +335,7 @@ inline std::string report_json(const StudyResult& r) {
       .add("total_hours", total / 3600);
   JsonObject out;
   out.add("program", o.program).add("input", input).add("model", model).add("monitor_points", r.monitor_points).add("settling", settling);
+  out.add("warnings", r.warnings);
   if (o.free_vibration) {
     const auto& f = r.free_vibration;
     JsonObject j;

@@ -19,7 +19,9 @@ struct MassProportional {
   /// zeta(omega) = alpha / (2 omega), eq. 10 with beta = 0; omega in rad/s.
   constexpr double damping_ratio(double omega) const noexcept { return alpha / (2.0 * omega); }
 
-  // DampingPolicy: acts on every degree of freedom (translations and rotations), not on the springs.
+  // DampingPolicy: acts on every degree of freedom (translations and rotations), not on the springs; translations
+  // relative to the table or to the ground (damping/frame.hpp).
+  static constexpr bool damps_velocities = true;
   using ContactState = NoState;
   constexpr double spring_stress(ContactState&, double, double, double, bool, double&) const noexcept { return 0.0; }
   static constexpr double held_stress(const ContactState&) noexcept { return 0.0; }

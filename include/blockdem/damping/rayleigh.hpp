@@ -36,7 +36,8 @@ struct Rayleigh {
   }
 
   // DampingPolicy: the mass part on every degree of freedom, the stiffness part as dashpots on the springs;
-  // each is the policy of its own file.
+  // each is the policy of its own file (the mass part in the frame of damping/frame.hpp).
+  static constexpr bool damps_velocities = true;
   using ContactState = StiffnessProportional::ContactState;
   constexpr double spring_stress(ContactState& previous, double stiffness, double du, double dt, bool active,
                                  double& dissipated) const noexcept {

@@ -16,6 +16,7 @@
 #include "blockdem/core/rotation.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
+#include "blockdem/damping/frame.hpp"
 #include "blockdem/model/model.hpp"
 
 namespace blockdem {
@@ -24,6 +25,7 @@ namespace blockdem {
 /// masses, and the poses at the last detection that decide when contacts are detected again.
 struct BlockState {
   std::vector<double> kinetic, gravity_work, base_work, viscous;  // J, per block
+  std::vector<double> frame_work;  // J, per block: done by dashpots anchored to the table (damping/frame.hpp)
   std::vector<double> radius;                // m, largest distance of a vertex from the centroid
   std::vector<double> redetection_distance;  // m, per block (model::redetection_distances)
   std::vector<double> inverse_mass;          // 1/kg
@@ -42,6 +44,7 @@ struct BlockState {
     gravity_work.assign(n, 0.0);
     base_work.assign(n, 0.0);
     viscous.assign(n, 0.0);
+    frame_work.assign(n, 0.0);
     detected_position = b.position;
     detected_orientation = b.orientation;
     set_inverse_masses(b);
@@ -91,7 +94,7 @@ struct KeptBlock {
   Vec3 position, velocity, angular_velocity;
   Quaternion orientation;
   Mat3 rotation;
-  double kinetic, viscous, gravity_work;
+  double kinetic, viscous, gravity_work, frame_work;
 };
 
 namespace detail {
@@ -150,7 +153,7 @@ static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Mat3) == 9 * sizeof(d
 /// caller puts back the others). Fixed degrees of freedom are selected, not branched around.
 template <class Damping>
 void update_velocities(model::Model& m, BlockState& state, const Damping& policy, double timestep, std::size_t begin,
-                       std::size_t end, double increment_dt) {
+                       std::size_t end, double increment_dt, const damping::FrameVelocity& frame) {
   auto& b = m.bodies;
   // The arrays as restrict parameters of a function: with restrict local pointers GCC 12 left this loop scalar
   // (too many run-time alias checks).
@@ -159,13 +162,20 @@ void update_velocities(model::Model& m, BlockState& state, const Damping& policy
   const std::size_t count = end - begin;
   std::uint64_t fixity_wide[block_tile];
   for (std::size_t k = 0; k < count; ++k) fixity_wide[k] = b.fixity[begin + k];
-  const auto update = [damping = policy, dt = timestep, increment_dt, count, gravity = m.gravity](
+  // The frame's velocity before and after, and its change over the step per unit time (damping/frame.hpp).
+  [[maybe_unused]] const double frame_before[3] = {frame.before[0], frame.before[1], frame.before[2]};
+  [[maybe_unused]] const double frame_after[3] = {frame.after[0], frame.after[1], frame.after[2]};
+  [[maybe_unused]] const double frame_change[3] = {(frame_after[0] - frame_before[0]) / timestep,
+                                                   (frame_after[1] - frame_before[1]) / timestep,
+                                                   (frame_after[2] - frame_before[2]) / timestep};
+  // (The frame's arrays by reference, and only where the policy uses them.)
+  const auto update = [&, damping = policy, dt = timestep, increment_dt, count, gravity = m.gravity](
                           const std::uint64_t* __restrict fixity_of, const double* __restrict mass,
                           const double* __restrict inverse_mass, const double* __restrict principal_inertia,
                           const double* __restrict inverse_principal_inertia, const double* __restrict orientation,
                           const double* __restrict force, const double* __restrict moment, double* __restrict velocity,
                           double* __restrict angular_velocity, double* __restrict kinetic, double* __restrict viscous,
-                          double* __restrict gravity_work) {
+                          double* __restrict gravity_work, double* __restrict frame_work) {
     for (std::size_t i = 0; i < count; ++i) {
       const std::uint64_t fixity = fixity_of[i];
       const double mass_i = mass[i], inverse_mass_i = inverse_mass[i];
@@ -173,16 +183,27 @@ void update_velocities(model::Model& m, BlockState& state, const Damping& policy
       const double* inverse_inertia = inverse_principal_inertia + 3 * i;
       double r[9];  // r(j, k) at 3 k + j
       rotation_coefficients(orientation + 4 * i, r);
-      double dissipated = 0.0;
+      double dissipated = 0.0, by_frame = 0.0;
       double v_old[3], v[3], w_old[3], m_world[3];
       for (int c = 0; c < 3; ++c) {
         v_old[c] = velocity[3 * i + c];
         w_old[c] = angular_velocity[3 * i + c];
         m_world[c] = moment[3 * i + c];
         double with_this = dissipated;
-        const double updated =
-            damping.velocity_update(v_old[c], force[3 * i + c], damping::Inertia{mass_i, inverse_mass_i}, dt, with_this);
         const std::uint64_t fixed = 0 - ((fixity >> c) & 1u);
+        double updated;
+        if constexpr (damping::damps_velocities<Damping>()) {
+          // Relative to the frame: the update of v - v_frame under the force less the frame's inertial force, then
+          // back. The dashpot's force on the block, m (v(n+1/2) - v(n-1/2)) / dt - F, times the frame's velocity is
+          // the work the frame (the table's drive) does through it; the policy books the dissipation, relative.
+          updated = damping.velocity_update(v_old[c] - frame_before[c], force[3 * i + c] - mass_i * frame_change[c],
+                                            damping::Inertia{mass_i, inverse_mass_i}, dt, with_this) +
+                    frame_after[c];
+          const double dashpot = mass_i * (updated - v_old[c]) / dt - force[3 * i + c];
+          by_frame += select(fixed, 0.0, dashpot * 0.5 * (frame_before[c] + frame_after[c]) * dt);
+        } else {
+          updated = damping.velocity_update(v_old[c], force[3 * i + c], damping::Inertia{mass_i, inverse_mass_i}, dt, with_this);
+        }
         v[c] = select(fixed, 0.0, updated);
         dissipated = select(fixed, dissipated, with_this);
       }
@@ -225,6 +246,7 @@ void update_velocities(model::Model& m, BlockState& state, const Damping& policy
                    0.5 * (w_old_body[0] * inertia[0] * w_body[0] + w_old_body[1] * inertia[1] * w_body[1] +
                           w_old_body[2] * inertia[2] * w_body[2]);
       viscous[i] += dissipated;
+      if constexpr (damping::damps_velocities<Damping>()) frame_work[i] += by_frame;
       // Work of gravity over the move that brought the block to x_n, where the forces and energies are evaluated.
       gravity_work[i] += mass_i * (gravity[0] * v_old[0] + gravity[1] * v_old[1] + gravity[2] * v_old[2]) * increment_dt;
     }
@@ -234,7 +256,7 @@ void update_velocities(model::Model& m, BlockState& state, const Damping& policy
   update(fixity_wide, b.mass.data() + begin, state.inverse_mass.data() + begin, b.principal_inertia[begin].data(),
          state.inverse_inertia[begin].data(), b.orientation[begin].coeffs().data(), b.force[begin].data(),
          b.moment[begin].data(), b.velocity[begin].data(), b.angular_velocity[begin].data(), state.kinetic.data() + begin,
-         state.viscous.data() + begin, state.gravity_work.data() + begin);
+         state.viscous.data() + begin, state.gravity_work.data() + begin, state.frame_work.data() + begin);
 }
 
 /// Positions and orientations of blocks [begin, end), one block per vector lane and all of them as if free (the
@@ -329,9 +351,10 @@ inline bool update_positions(model::RigidBodies& b, BlockState& state, double dt
 }  // namespace detail
 
 /// Gather, gravity, damped velocity update; then position and orientation update, for every block, tile by tile.
+/// `frame`: the velocity of the frame mass-proportional damping works in (damping/frame.hpp; zero: the ground).
 template <bool Mixed, class Damping, class Groups>
 bool block_pass(model::Model& m, BlockState& state, const Groups& groups, const Damping& damping, const ExtraForces& extra,
-                double time, double dt, double increment_dt, bool move = true) {
+                double time, double dt, double increment_dt, bool move = true, const damping::FrameVelocity& frame = {}) {
   auto& b = m.bodies;
   const std::size_t n = b.size();
   const auto tiles = static_cast<std::ptrdiff_t>((n + block_tile - 1) / block_tile);
@@ -348,8 +371,8 @@ bool block_pass(model::Model& m, BlockState& state, const Groups& groups, const 
     for (std::size_t i = begin; i < end; ++i)
       if (b.motion[i] != model::Motion::free)
         kept[kept_count++] = {i, b.position[i], b.velocity[i], b.angular_velocity[i], b.orientation[i], b.rotation[i],
-                              state.kinetic[i], state.viscous[i], state.gravity_work[i]};
-    detail::update_velocities(m, state, damping, dt, begin, end, increment_dt);
+                              state.kinetic[i], state.viscous[i], state.gravity_work[i], state.frame_work[i]};
+    detail::update_velocities(m, state, damping, dt, begin, end, increment_dt, frame);
     if (move) moved = detail::update_positions(b, state, dt, begin, end, base_moved) || moved;
     for (std::size_t k = 0; k < kept_count; ++k) {
       const KeptBlock& e = kept[k];
@@ -361,6 +384,7 @@ bool block_pass(model::Model& m, BlockState& state, const Groups& groups, const 
       state.kinetic[e.i] = e.kinetic;
       state.viscous[e.i] = e.viscous;
       state.gravity_work[e.i] = e.gravity_work;
+      state.frame_work[e.i] = e.frame_work;
     }
   }
   return moved;

@@ -29,6 +29,7 @@ namespace blockdem {
 /// Energy terms of the deformable part (J), added to the simulation's report.
 struct DeformableEnergy {
   double kinetic = 0, elastic = 0, gravity_work = 0, viscous = 0, slip = 0;
+  double base_work = 0;  // done by dashpots anchored to the table (damping/frame.hpp)
 };
 
 template <damping::DampingPolicy Damping, contact::ContactLaw... Laws>
@@ -64,6 +65,7 @@ class DeformableState {
   std::vector<Vec3> truss_force;                    // N, on end 0 (end 1 gets the opposite)
   std::vector<double> node_inverse_mass;            // 1/kg
   std::vector<double> node_kinetic, node_gravity_work, node_viscous;
+  std::vector<double> node_frame_work;  // J: done by dashpots anchored to the table (damping/frame.hpp)
   std::vector<Vec3> extra_force, extra_moment;      // N, N m, on rigid blocks: node contacts, trusses, weight correction
   std::vector<double> rigid_real_mass;              // kg, before density scaling
   std::vector<Vec3> rigid_real_inertia;             // kg m^2, idem
@@ -98,6 +100,7 @@ class DeformableState {
     for (std::size_t i = 0; i < nd.size(); ++i) node_kinetic[i] = 0.5 * nd.mass[i] * nd.velocity[i].squaredNorm();
     node_gravity_work.assign(nd.size(), 0.0);
     node_viscous.assign(nd.size(), 0.0);
+    node_frame_work.assign(nd.size(), 0.0);
     extra_force.assign(m.bodies.size(), Vec3::Zero());
     extra_moment.assign(m.bodies.size(), Vec3::Zero());
     if (rigid_real_mass.size() != m.bodies.size()) {  // kept over a second setup: the blocks may be scaled by then
@@ -234,6 +237,7 @@ class DeformableState {
       e.kinetic += node_kinetic[i];
       e.gravity_work += node_gravity_work[i];
       e.viscous += node_viscous[i];
+      e.base_work += node_frame_work[i];
     }
     e.gravity_work += extra_work;
     for (double w : element_viscous) e.viscous += w;
@@ -300,6 +304,7 @@ class DeformableState {
     ar("node kinetic energies", d.node_kinetic);
     ar("node gravity work", d.node_gravity_work);
     ar("node viscous work", d.node_viscous);
+    ar("node frame work", d.node_frame_work);
     ar("forces on rigid blocks", d.extra_force);
     ar("moments on rigid blocks", d.extra_moment);
     ar("real rigid block masses", d.rigid_real_mass);

@@ -23,7 +23,7 @@ struct EnergyReport {
   double kinetic = 0;       // of the free blocks
   double elastic = 0;       // stored in the joint springs and the damping springs (Maxwell branches)
   double gravity_work = 0;  // done by gravity on the free blocks
-  double base_work = 0;     // done by the base blocks on the rest
+  double base_work = 0;     // done by the base blocks on the rest (and by dashpots anchored to them: damping/frame.hpp)
   double viscous = 0;       // dissipated by viscous damping
   double slip = 0;          // dissipated by the joint laws (friction, softening)
   // Changes of the discrete model, done by no force: the energy re-detection stores in the contacts (CPs that start
@@ -74,7 +74,7 @@ inline void add_block_energy(const BlockState& s, EnergyReport& e) {
   for (std::size_t i = 0; i < s.kinetic.size(); ++i) {
     e.kinetic += s.kinetic[i];
     e.gravity_work += s.gravity_work[i];
-    e.base_work += s.base_work[i];
+    e.base_work += s.base_work[i] + s.frame_work[i];
     e.viscous += s.viscous[i];
   }
 }

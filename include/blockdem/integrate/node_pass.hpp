@@ -10,6 +10,7 @@
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
+#include "blockdem/damping/frame.hpp"
 #include "blockdem/model/model.hpp"
 
 namespace blockdem {
@@ -124,10 +125,11 @@ void gather_rigid(State& state, const model::Model& m, double increment_dt) {
 }
 
 /// Gather (elements, contacts, trusses in a fixed order), gravity with the real mass, damped velocity update with
-/// the scaled mass, then positions. Returns whether a node moved more than `redetection` since the last detection.
+/// the scaled mass (mass-proportional damping in the frame of `frame`, as block_pass), then positions. Returns whether
+/// a node moved more than `redetection` since the last detection.
 template <class State, class Damping>
 bool node_pass(State& state, model::Model& m, const Damping& damping, double dt, double increment_dt, bool move,
-               double redetection) {
+               double redetection, const damping::FrameVelocity& frame = {}) {
   auto& nd = m.deformable.nodes;
   const Vec3 gravity = m.gravity;
   const auto count = static_cast<std::ptrdiff_t>(nd.size());
@@ -159,7 +161,22 @@ bool node_pass(State& state, model::Model& m, const Damping& damping, double dt,
     Vec3 v;
     double dissipated = 0.0;
     const std::uint8_t fixity = nd.fixity[i];
-    for (int c = 0; c < 3; ++c) v[c] = (fixity & (1u << c)) ? 0.0 : damping.velocity_update(v_old[c], force[c], mass, dt, dissipated);
+    if constexpr (damping::damps_velocities<Damping>()) {
+      double by_frame = 0.0;
+      for (int c = 0; c < 3; ++c) {
+        if (fixity & (1u << c)) {
+          v[c] = 0.0;
+          continue;
+        }
+        v[c] = damping.velocity_update(v_old[c] - frame.before[c], force[c] - mass.value * (frame.after[c] - frame.before[c]) / dt,
+                                       mass, dt, dissipated) +
+               frame.after[c];
+        by_frame += (mass.value * (v[c] - v_old[c]) / dt - force[c]) * 0.5 * (frame.before[c] + frame.after[c]) * dt;
+      }
+      state.node_frame_work[i] += by_frame;
+    } else {
+      for (int c = 0; c < 3; ++c) v[c] = (fixity & (1u << c)) ? 0.0 : damping.velocity_update(v_old[c], force[c], mass, dt, dissipated);
+    }
     nd.velocity[i] = v;
     state.node_kinetic[i] = 0.5 * mass.value * v_old.dot(v);
     state.node_viscous[i] += dissipated;

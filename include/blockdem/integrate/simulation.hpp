@@ -8,8 +8,8 @@
 //   -> block pass (integrate/block_pass.hpp) -> node pass (integrate/node_pass.hpp).
 // The timestep and density scaling are in integrate/timestep.hpp, the energy balance in integrate/energy.hpp, the
 // output view of the contacts in integrate/contact_view.hpp. Results do not depend on the number of OpenMP threads.
-// The members that set the timestep and the masses are defined in integrate/simulation_masses.hpp, the checkpoint
-// state in integrate/simulation_state.hpp.
+// The members that detect and assign contacts are defined in integrate/simulation_contacts.hpp, those that set the
+// timestep and the masses in integrate/simulation_masses.hpp, the checkpoint state in integrate/simulation_state.hpp.
 
 #include <algorithm>
 #include <chrono>
@@ -28,6 +28,7 @@
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
+#include "blockdem/damping/frame.hpp"
 #include "blockdem/integrate/block_pass.hpp"
 #include "blockdem/integrate/contact_assignment.hpp"
 #include "blockdem/integrate/contact_group.hpp"
@@ -95,6 +96,7 @@ class Simulation {
     const bool chosen = other.dt_ < other.default_timestep() * (1 - 1e-12);
     set_timestep(chosen ? std::min(other.dt_, default_timestep()) : default_timestep());
     density_safety_ = other.density_safety_;
+    damping_frame_ = other.damping_frame_;
   }
 
   // ---- the step (Sect. 3.1) ----
@@ -266,6 +268,11 @@ class Simulation {
   /// memory) is read there. Empty: nothing is called.
   void set_detection_observer(std::function<void()> observer) { detection_observer_ = std::move(observer); }
 
+  /// The frame in which mass-proportional damping (and Rayleigh's mass term) measures velocities: the table's (the
+  /// default) or the ground's (damping/frame.hpp). Other policies ignore it.
+  void set_damping_frame(damping::Frame frame) { damping_frame_ = frame; }
+  damping::Frame damping_frame() const { return damping_frame_; }
+
   /// What holding the timestep against new contacts has done so far (see TimestepHold).
   const TimestepHold& timestep_hold() const { return hold_; }
 
@@ -374,7 +381,8 @@ class Simulation {
     const double half_step = timestep_changed ? half_step_kinetic(*model_) : 0.0;
     run_block_pass<Mixed>(increment_dt, /*move=*/true);
     if constexpr (Mixed) {
-      const bool nodes_moved = node_pass(deformable_, *model_, damping_, dt_, increment_dt, true, settings_.redetection());
+      const bool nodes_moved =
+          node_pass(deformable_, *model_, damping_, dt_, increment_dt, true, settings_.redetection(), frame_velocity(increment_dt));
       moved_since_detection_ = moved_since_detection_ || nodes_moved;
     }
     if (timestep_changed) [[unlikely]]
@@ -402,10 +410,26 @@ class Simulation {
     gather_rigid(deformable_, *model_, increment_dt);
   }
 
+  /// The velocity of the damping's frame around the present step: the table's at t - dt/2 (the move that led here;
+  /// at the first step, none: the table's next) and t + dt/2; zero in the ground's frame, or for a policy that has
+  /// no mass-proportional term.
+  damping::FrameVelocity frame_velocity(double increment_dt) const {
+    damping::FrameVelocity f;
+    if constexpr (damping::damps_velocities<Damping>()) {
+      if (damping_frame_ == damping::Frame::table) {
+        f.after = model_->base_velocity(time_ + 0.5 * dt_);
+        f.before = increment_dt > 0.0 ? model_->base_velocity(time_ - 0.5 * increment_dt) : f.after;
+      }
+    }
+    (void)increment_dt;
+    return f;
+  }
+
   template <bool Mixed>
   void run_block_pass(double increment_dt, bool move) {
     const ExtraForces extra = Mixed ? ExtraForces{deformable_.extra_force.data(), deformable_.extra_moment.data()} : ExtraForces{};
-    const bool moved = block_pass<Mixed>(*model_, blocks_, groups_, damping_, extra, time_, dt_, increment_dt, move);
+    const damping::FrameVelocity frame = move ? frame_velocity(increment_dt) : damping::FrameVelocity{};
+    const bool moved = block_pass<Mixed>(*model_, blocks_, groups_, damping_, extra, time_, dt_, increment_dt, move, frame);
     moved_since_detection_ = moved_since_detection_ || moved;
   }
 
@@ -414,28 +438,7 @@ class Simulation {
   /// changed. The energy stored in the contacts that this adds or removes is done by no force; it is kept as its own
   /// term of the balance (EnergyReport::contact_update), measured, not inferred from the residual.
   template <bool Mixed>
-  void redetect_and_update() {
-    const auto stored = [&] {
-      const EnergyReport e = energy_terms();
-      return e.elastic + e.viscous + e.slip;
-    };
-    const double before = stored();
-    if (detection_observer_) detection_observer_();
-    const auto start = std::chrono::steady_clock::now();
-    if constexpr (Mixed) {
-      move_proxies(*model_);
-      assign_all(model::detect_contacts(model_->bodies, settings_), /*keep_history=*/true);
-    } else {
-      assign_contacts(model::detect_contacts(model_->bodies, settings_), /*keep_history=*/true);
-    }
-    detection_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    for_each_group([&](auto& g) { contact_pass(g, model_->bodies, damping_, 0.0, closure_inverse_omega_squared()); });
-    if constexpr (Mixed) mixed_forces(0.0);
-    contact_update_ += stored() - before;
-    // One FrequencyBound per re-detection (its 6 x 6 eigenproblems per block are most of a violent run's detection
-    // time): the timestep's hold and the closure impulse share it.
-    set_closure_bound(hold_timestep());
-  }
+  void redetect_and_update();
 
   /// After a re-detection of a dynamic run: the new contact points may have raised omega_max (eq. 1) above what
   /// the timestep allows. A density-scaled run (scale_density_to) keeps its timestep and raises, by the same rule
@@ -493,6 +496,7 @@ class Simulation {
       e.kinetic += d.kinetic;
       e.elastic += d.elastic;
       e.gravity_work += d.gravity_work;
+      e.base_work += d.base_work;
       e.viscous += d.viscous;
       e.slip += d.slip;
     }
@@ -502,48 +506,14 @@ class Simulation {
   // ---- contact assignment (integrate/contact_assignment.hpp, integrate/node_contact_assignment.hpp) ----
 
   /// Rigid-rigid pairs to the rigid groups, pairs with a deformable block to the node groups.
-  void assign_all(const std::vector<model::ContactCandidate>& candidates, bool keep_history) {
-    if (!mixed_) {
-      assign_contacts(candidates, keep_history);
-      return;
-    }
-    std::vector<model::ContactCandidate> rigid, deformable;
-    for (const auto& c : candidates)
-      (model_->deformable.is_deformable(c.a) || model_->deformable.is_deformable(c.b) ? deformable : rigid).push_back(c);
-    assign_contacts(rigid, keep_history);
-    node_assignment_.assign(deformable_, *model_, deformable, [&](int ta, int tb) { return choose_properties(ta, tb); },
-                            settings_, keep_history);
-  }
-
+  void assign_all(const std::vector<model::ContactCandidate>& candidates, bool keep_history);
   /// The rigid-rigid contacts of a detection; the poses it was made at.
-  void assign_contacts(const std::vector<model::ContactCandidate>& candidates, bool keep_history) {
-    const auto& b = model_->bodies;
-    CarriedDissipation retired{retired_slip_, retired_viscous_};
-    assignment_.assign(groups_, b, candidates, properties_, damping_, settings_, keep_history, retired);
-    retired_slip_ = retired.slip;
-    retired_viscous_ = retired.viscous;
-    blocks_.detected_position = b.position;
-    blocks_.detected_orientation = b.orientation;
-    blocks_.detected_base_displacement = blocks_.base_displacement;
-    update_redetection_distances();
-    moved_since_detection_ = false;
-    ++detections_;
-  }
-
-  Properties choose_properties(int ta, int tb) {
-    auto it = chosen_properties_.find({ta, tb});
-    if (it == chosen_properties_.end()) it = chosen_properties_.emplace(std::make_pair(ta, tb), properties_(ta, tb)).first;
-    return it->second;
-  }
-
+  void assign_contacts(const std::vector<model::ContactCandidate>& candidates, bool keep_history);
+  /// The joint's properties for a pair of joint tags, asked of the property function once per pair.
+  Properties choose_properties(int ta, int tb);
   /// Per block, how far it may move before the contacts are detected again (model::redetection_distances), from
   /// the poses at the last detection, so that a loaded checkpoint gets the same distances.
-  void update_redetection_distances() {
-    const auto& d = model_->deformable;
-    blocks_.redetection_distance = model::redetection_distances(model_->bodies, blocks_.detected_position,
-                                                                blocks_.detected_orientation, settings_,
-                                                                [&](std::size_t i) { return d.is_deformable(i); });
-  }
+  void update_redetection_distances();
 
   void resize_block_arrays() {
     blocks_.reset(model_->bodies);
@@ -565,6 +535,7 @@ class Simulation {
 
   model::Model* model_;
   Damping damping_;
+  damping::Frame damping_frame_ = damping::Frame::table;
   bool mixed_ = false;
   DeformableState<Damping, Laws...> deformable_;
   std::map<std::pair<int, int>, Properties> chosen_properties_;
@@ -601,5 +572,6 @@ class Simulation {
 
 // The members' definitions by job: the timestep and the masses (density scaling, static mass scaling, the hold),
 // and the checkpoint state.
+#include "blockdem/integrate/simulation_contacts.hpp"
 #include "blockdem/integrate/simulation_masses.hpp"
 #include "blockdem/integrate/simulation_state.hpp"

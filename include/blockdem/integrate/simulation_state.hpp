@@ -27,6 +27,8 @@ void Simulation<Damping, Laws...>::visit_state(Self& s, Archive& ar) {
   ar.same_size("block gravity work", blocks.gravity_work);
   ar.same_size("block base work", blocks.base_work);
   ar.same_size("block viscous work", blocks.viscous);
+  ar.same_size("block frame work", blocks.frame_work);
+  ar("damping frame", s.damping_frame_);
   ar.same_size("block inverse masses", blocks.inverse_mass);
   ar.same_size("block inverse inertias", blocks.inverse_inertia);
   ar.same_size("block positions at the last detection", blocks.detected_position);
