@@ -11,6 +11,7 @@
 // Exit status: 0 on success, 2 on bad input, 1 if the run left every physical bound (it diverged).
 
 #include <cstdio>
+#include <iostream>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -35,6 +36,9 @@ int main(int argc, char** argv) {
   app.add_option("--density", o.density, "kg/m^3")->capture_default_str();
   app.add_option("--normal-stiffness", o.normal_stiffness, "joint normal stiffness, Pa/m (shear: half)")->capture_default_str();
   app.add_flag("--find-collapse", find_collapse, "find the collapse multiplier lambda by bisection to 0.005");
+  bool model_file = false;
+  app.add_flag("--model", model_file, "write the arch and the pushover of --find-collapse as a model file (docs/model-file.md) "
+                                      "on stdout: `blockdem run` on it finds the same multiplier");
   app.add_option("--unbalanced-tolerance", o.unbalanced_tolerance,
                  "unbalanced force ratio below which the arch stands (or, --to-rest, its pieces rest), (0, 0.1]")
       ->capture_default_str();
@@ -46,6 +50,14 @@ int main(int argc, char** argv) {
   if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
   try {
     o.validate();
+    if (model_file) {
+      if (o.deformable) throw InvalidArgument("--model writes rigid voussoirs: leave out --deformable");
+      analysis::StudyOptions study;
+      study.contacts = model::ContactKinds::general;
+      const auto pushover = analysis::arch_pushover(o);
+      analysis::write_model_file(std::cout, analysis::arch_description(o), study, &pushover);
+      return std::cout.flush() ? 0 : 1;
+    }
     const auto r = analysis::analyse_arch(o);
     auto bisection = o;
     bisection.vtk_prefix.clear();

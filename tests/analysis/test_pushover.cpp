@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "blockdem/analysis/arch.hpp"
 #include "blockdem/analysis/model_file.hpp"
 #include "blockdem/analysis/model_file_writer.hpp"
 #include "blockdem/analysis/pushover.hpp"
@@ -76,25 +77,20 @@ TEST_CASE("pushover: a dry running-bond wall standing free, pushed out of plane,
 TEST_CASE("pushover: the 40-voussoir arch as a model file collapses at the multiplier of arch --find-collapse") {
   // The arch of analysis/arch.hpp (t/R = 0.15, R = 1 m, depth 0.5 m, dry joints of 40 degrees, k_n = 1e10 Pa/m,
   // 2000 kg/m^3, springings fixed; tolerance 1e-4 R; collapse at a quarter of the thickness) written as a model file.
-  analysis::ModelDescription d;
-  d.name = "40-voussoir arch";
-  d.materials.push_back({"stone", 2000, 0, 0});
-  d.laws = analysis::LawTable({"arch"});
-  d.laws.set(0, 0, contact::MohrCoulomb::Parameters(1e10, 5e9, 0, 0, 40 * pi / 180));
-  d.contact_tolerance = 1e-4;
-  for (const auto& b : geometry::semicircular_arch(40, 1.0, 0.15, 0.5))
-    d.blocks.push_back({b.name, 0, 0, b.support ? model::Motion::fixed : model::Motion::free, b.shape, 0.0});
+  // As `arch --model` writes it.
+  const analysis::ArchOptions arch;
   analysis::StudyOptions study;
   study.contacts = model::ContactKinds::general;
+  const auto push = analysis::arch_pushover(arch);
   std::ostringstream text;
-  analysis::write_model_file(text, d, study);
+  analysis::write_model_file(text, analysis::arch_description(arch), study, &push);
   const auto file = analysis::parse_model_file(text.str(), "arch.json");
-  analysis::PushoverOptions o;
-  o.axis = 'x';
-  o.resolution = 0.005;  // as --find-collapse
-  o.collapse_displacement = 0.25 * 0.15;
+  REQUIRE(file.pushover);
+  analysis::PushoverOptions o = *file.pushover;
+  CHECK(o.resolution == 0.005);  // as --find-collapse
+  CHECK(o.collapse_displacement == 0.25 * 0.15);
   o.progress = false;
-  const auto r = analysis::run_pushover(file.structure, o, true);
+  const auto r = analysis::run_pushover(file.structure, o, file.study.contacts == model::ContactKinds::general);
   // `arch --find-collapse`: 0.142578125 (8 halvings of [0, 1]; docs/arch.md). The same bisection on the same
   // blocks, laws and thresholds, with the study's simulation: the same bracket, or the next one.
   CHECK(r.collapse_multiplier == test::approx(0.142578125).epsilon(0.005 / 0.142578125));

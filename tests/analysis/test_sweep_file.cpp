@@ -120,7 +120,7 @@ TEST_CASE("sweep file: bad files are refused with the line, column, key and what
       {"{}", "bad.json:1:1: schemes", "missing"},
       {R"({"schemes": []})", "bad.json:1:13: schemes", "at least one"},
       {"{" + none + ",\n \"level\": [25]}", "bad.json:2:11: unknown key \"level\"",
-       "allowed keys: kinematics, records, levels, pga_g, sa_g, sa_period_s, incremental, measured"},
+       "allowed keys: model, kinematics, records, levels, pga_g, sa_g, sa_period_s, incremental, measured"},
       {R"({"schemes": [{"scheme": "none", "zetas": 0.02}]})", "bad.json:1:42: unknown key \"zetas\" in schemes[0]",
        "allowed keys: scheme, zeta, frequency_hz, band_hz, branches"},
       {R"({"schemes": [{"scheme": "viscous"}]})", "bad.json:1:25: schemes[0].scheme",

@@ -14,6 +14,8 @@
 #include <vector>
 
 #include "blockdem/analysis/deformable_options.hpp"
+#include "blockdem/analysis/model_file_writer.hpp"
+#include "blockdem/analysis/pushover_options.hpp"
 #include "blockdem/contact/mohr_coulomb.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/units.hpp"
@@ -102,6 +104,33 @@ inline double deepest_overlap(const model::Model& model) {
       deepest = std::max(deepest, -geometry::separation(world[i], world[j]));
     }
   return deepest;
+}
+
+/// The arch as a model file describes it (analysis/model_file_writer.hpp): the voussoirs of analyse_arch, the
+/// springings fixed, its dry joint law, its contact tolerance (rigid voussoirs; no floor).
+inline ModelDescription arch_description(const ArchOptions& o) {
+  o.validate();
+  ModelDescription d;
+  d.name = std::to_string(o.voussoirs) + "-voussoir semicircular arch, t/R = " + num(o.thickness_ratio);
+  d.materials.push_back({"stone", o.density, 0, 0});
+  d.laws = LawTable({"arch"});
+  d.laws.set(0, 0, contact::MohrCoulomb::Parameters(o.normal_stiffness, 0.5 * o.normal_stiffness, 0, 0, o.friction_angle_deg * pi / 180.0));
+  d.contact_tolerance = 1e-4 * o.radius;
+  for (const auto& b : geometry::semicircular_arch(o.voussoirs, o.radius, o.thickness_ratio * o.radius, o.depth))
+    d.blocks.push_back({b.name, 0, 0, b.support ? model::Motion::fixed : model::Motion::free, b.shape, 0.0});
+  return d;
+}
+
+/// The pushover of `arch --find-collapse` as the study runs it (analysis/pushover.hpp): lambda g along +x, bisected
+/// to 0.005, collapse at a voussoir moving a quarter of the ring's thickness (or o.collapse_displacement).
+inline PushoverOptions arch_pushover(const ArchOptions& o) {
+  PushoverOptions p;
+  p.axis = 'x';
+  p.resolution = 0.005;
+  p.collapse_displacement = o.collapse_displacement > 0 ? o.collapse_displacement : 0.25 * o.thickness_ratio * o.radius;
+  p.tolerance = o.unbalanced_tolerance;
+  p.max_steps = o.max_steps;
+  return p;
 }
 
 inline ArchResult analyse_arch(const ArchOptions& o) {

@@ -12,6 +12,7 @@
 #include <variant>
 #include <vector>
 
+#include "blockdem/analysis/pushover_options.hpp"
 #include "blockdem/analysis/structure.hpp"
 #include "blockdem/analysis/study_options.hpp"
 #include "blockdem/contact/laws.hpp"
@@ -104,7 +105,8 @@ inline const char* axis_name(char axis) { return axis == 'x' ? "x" : axis == 'y'
 }  // namespace detail
 
 /// Writes `d` with the study `o` (its excitation and study; not how it is run: output folder, progress, checkpoints).
-inline void write_model_file(std::ostream& out, const ModelDescription& d, const StudyOptions& o) {
+inline void write_model_file(std::ostream& out, const ModelDescription& d, const StudyOptions& o,
+                             const PushoverOptions* pushover = nullptr) {
   using detail::json_number, detail::json_string, detail::json_vec3;
   out << "{\n  \"blockdem_model\": 1,\n  \"name\": " << json_string(d.name) << ",\n  \"units\": \"SI\",\n  \"gravity\": " << json_vec3(d.gravity)
       << ",\n  \"materials\": {";
@@ -178,11 +180,20 @@ inline void write_model_file(std::ostream& out, const ModelDescription& d, const
   if (o.read.dt) out << ", \"dt\": " << json_number(*o.read.dt);
   if (o.truncation == Truncation::wavelet) out << ", \"truncation\": \"wavelet\"";
   else if (!o.window_default) out << ", \"window_s\": [" << json_number(o.window_start) << ", " << json_number(o.window_end) << "]";
-  out << ", \"record_level_percent\": " << json_number(o.record_level) << "},\n  \"study\": {\n    \"analysis\": \"levels\", \"levels_percent\": [";
+  out << ", \"record_level_percent\": " << json_number(o.record_level) << "},\n  \"study\": {\n    \"analysis\": ";
+  if (pushover)
+    out << "\"pushover\", \"pushover\": {\"axis\": \"" << (pushover->sign < 0 ? "-" : "") << pushover->axis << "\", \"upper\": "
+        << json_number(pushover->upper) << ", \"resolution\": " << json_number(pushover->resolution)
+        << ", \"collapse_displacement_m\": " << json_number(pushover->collapse_displacement) << ", \"tolerance\": "
+        << json_number(pushover->tolerance) << ", \"max_steps\": " << pushover->max_steps << "},\n    ";
+  else
+    out << "\"levels\", ";
+  out << "\"levels_percent\": [";
   for (std::size_t l = 0; l < o.levels.size(); ++l) out << (l ? ", " : "") << json_number(o.levels[l]);
   out << "], \"rest_s\": " << json_number(o.rest) << ",\n    \"damping\": {\"scheme\": \"" << name(o.damping) << "\", \"zeta\": "
       << json_number(o.zeta) << ", \"frequency_hz\": " << json_number(o.frequency_hz) << ", \"band_hz\": [" << json_number(o.lower_hz)
-      << ", " << json_number(o.upper_hz) << "], \"branches\": " << o.branches << "},\n    \"timestep\": {\"target_dt_s\": "
+      << ", " << json_number(o.upper_hz) << "], \"branches\": " << o.branches << ", \"frame\": \"" << name(o.damping_frame)
+      << "\"},\n    \"timestep\": {\"target_dt_s\": "
       << json_number(o.target_dt) << ", \"mass_increase_percent\": " << json_number(o.default_mass_increase_percent)
       << ", \"max_mass_increase_percent\": " << json_number(o.max_mass_increase_percent) << "},\n    \"settle\": {\"tolerance\": "
       << json_number(o.settle_tolerance) << ", \"max_steps\": " << o.settle_max_steps << "},\n    \"outputs\": {\"history_dt_s\": "
