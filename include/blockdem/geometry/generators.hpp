@@ -15,6 +15,7 @@ struct NamedBlock {
   ConvexPolyhedron shape;
   std::string name;
   bool support = false;  // a block meant to be fixed (springings, foundation)
+  std::string group{};   // what the block is part of ("wall", "lintel", ...); empty: not grouped
 };
 
 /// A semicircular arch in the x-z plane (z up), centre of the circle at the origin, `radius` to the centreline,
