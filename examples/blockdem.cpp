@@ -4,9 +4,15 @@
 //       settles the structure under gravity and shakes it at each level of the model file's record in turn, writing
 //       histories, damage maps, report.json and the run's Table 4 into DIR; every option overrides the file's;
 //       with "analysis": "pushover" in the file, the equivalent-static pushover instead: the collapse multiplier;
-//   blockdem check MODEL.json [--json]
-//       reads the model file, builds the blocks and detects their contacts: what the model holds, and the pairs of
-//       groups that touch without a joint law.
+//   blockdem check FILE [--json]
+//       a model file or a geometry file alone (OBJ, 3DEC deck, COMPAS): the blocks, then each problem by block (not
+//       closed, not planar, not convex, no volume, overlapping, touching nothing; inward faces turned); for a model
+//       file also its contacts and the pairs of groups that touch without a joint law; exit status 2 when a block
+//       cannot be used. `blockdem run` runs the same checks first;
+//   blockdem generate wall|barrel-vault|arch|cross-vault [options] [--pushover] > MODEL.json
+//       the model file of a common typology (docs/generators.md), run as it is by `blockdem run`;
+//   blockdem export FILE OUT.obj|OUT.3ddat
+//       the blocks of a model or geometry file written as Wavefront OBJ or a 3DEC deck;
 //
 // Exit status: 0 on success, 1 if a run is interrupted or diverges, 2 on bad input.
 
@@ -23,10 +29,13 @@
 
 #include "blockdem/analysis/model_file.hpp"
 #include "blockdem/analysis/pushover.hpp"
+#include "blockdem/analysis/structure_check.hpp"
 #include "blockdem/analysis/study.hpp"
 #include "blockdem/integrate/run.hpp"
 #include "blockdem/io/json.hpp"
 #include "blockdem/model/contact_detection.hpp"
+#include "check_cli.hpp"
+#include "generate_cli.hpp"
 #include "cli.hpp"
 #include "study_cli.hpp"
 #include "study_runs.hpp"
@@ -42,6 +51,21 @@ double scaled_record_level(const analysis::ModelFile& file, analysis::StudyOptio
   std::string note;
   o.record_level = 100;
   return analysis::record_level_for(file.scale, analysis::detail::input_record(o, note), path);
+}
+
+/// The checks of `blockdem check` (docs/geometry-import.md), run before a study: what makes a block unusable is
+/// refused with the list; warnings go to stderr.
+void refuse_unusable(const analysis::ModelFile& file, const std::string& path) {
+  auto issues = file.geometry_issues;
+  analysis::check_structure(file.structure, issues, file.block_origin);
+  if (analysis::count_issues(issues, geometry::BlockIssue::Severity::error) > 0) {
+    std::string text = analysis::issues_text(issues);
+    text.pop_back();
+    throw InvalidArgument(path + ": the model cannot be run (blockdem check " + path + " says the same):\n" + text);
+  }
+  for (const auto& i : issues)
+    if (i.severity == geometry::BlockIssue::Severity::warning)
+      std::fprintf(stderr, "blockdem: warning: %s: %s: %s\n", path.c_str(), i.subject().c_str(), i.what.c_str());
 }
 
 /// `blockdem run`: the model file's study with the command line's overrides.
@@ -68,6 +92,7 @@ struct RunCommand {
 
   int run() {
     common.finish(study);
+    refuse_unusable(file, path);
     if (file.pushover) return pushover();
     // The intensity target of the file, unless the command line gives the record level.
     if (file.scale.kind != analysis::RecordScale::Kind::record_level && record_level->count() == 0)
@@ -162,6 +187,7 @@ struct SweepCommand {
   int run(int argc, char** argv) {
     sweep.refuse_grid_options();
     common.finish(study);
+    refuse_unusable(file, spec.model);
     if (file.pushover)
       throw InvalidArgument(spec.model + ": study.analysis: a pushover; a sweep runs the seismic study's levels (\"levels\")");
     if (file.structure.monitors.empty())
@@ -197,73 +223,6 @@ struct SweepCommand {
   }
 };
 
-/// `blockdem check`: the model as built, its contacts, and the pairs of groups that touch without a law.
-struct CheckCommand {
-  std::string path;
-  bool json = false;
-
-  void add_to(CLI::App& app) {
-    app.add_option("model", path, "the model file (JSON, docs/model-file.md)")->required();
-    app.add_flag("--json", json, "print JSON");
-  }
-
-  int run() const {
-    using clock = std::chrono::steady_clock;
-    const auto t0 = clock::now();
-    const auto file = analysis::read_model_file(path);
-    const double load_seconds = std::chrono::duration<double>(clock::now() - t0).count();
-    const auto& s = file.structure;
-    s.validate();
-    auto settings = s.contacts;
-    settings.kinds = file.study.contacts;
-    s.laws.fill(settings);
-    const auto t1 = clock::now();
-    const auto contacts = model::detect_contacts(s.model.bodies, settings);
-    const double detection_seconds = std::chrono::duration<double>(clock::now() - t1).count();
-    std::map<std::pair<std::size_t, std::size_t>, long long> by_pair;
-    for (const auto& c : contacts) {
-      auto a = static_cast<std::size_t>(s.model.bodies.joint_tag[c.a]), b = static_cast<std::size_t>(s.model.bodies.joint_tag[c.b]);
-      if (a > b) std::swap(a, b);
-      ++by_pair[{a, b}];
-    }
-    std::vector<std::string> missing;
-    for (const auto& [pair, n] : by_pair)
-      if (!s.laws.has(pair.first, pair.second))
-        missing.push_back(s.laws.name(pair.first) + "-" + s.laws.name(pair.second) + " (" + std::to_string(n) + " contact points)");
-    if (json) {
-      io::JsonObject out, pairs;
-      for (const auto& [pair, n] : by_pair) pairs.add(s.laws.name(pair.first) + "-" + s.laws.name(pair.second), n);
-      out.add("model", s.name).add("blocks", static_cast<long long>(s.model.bodies.size()))
-          .add("deformable_blocks", static_cast<long long>(s.model.deformable.blocks.size()))
-          .add("tetrahedra", static_cast<long long>(s.model.deformable.tetrahedra.size()))
-          .add("ties", static_cast<long long>(s.model.deformable.trusses.size())).add("groups", s.groups())
-          .add("free_mass_kg", s.model.total_mass()).add("contact_points", static_cast<long long>(contacts.size()))
-          .add("contact_points_by_group_pair", pairs).add("pairs_without_law", missing)
-          .add("monitor_points", static_cast<long long>(s.monitors.size())).add("table", s.table ? s.model.bodies.name[*s.table] : "")
-          .add("load_seconds", load_seconds).add("detection_seconds", detection_seconds);
-      fmt::print("{}\n", out.str());
-    } else {
-      fmt::print("model '{}': {} blocks ({} deformable, {} tetrahedra), {} ties, {:.1f} kg free; groups:", s.name, s.model.bodies.size(),
-                 s.model.deformable.blocks.size(), s.model.deformable.tetrahedra.size(), s.model.deformable.trusses.size(), s.model.total_mass());
-      for (const auto& g : s.groups()) fmt::print(" {}", g);
-      fmt::print("\n{} contact points:", contacts.size());
-      for (const auto& [pair, n] : by_pair) fmt::print(" {}-{} {}", s.laws.name(pair.first), s.laws.name(pair.second), n);
-      fmt::print("\nmonitor points:");
-      for (const auto& m : s.monitors) fmt::print(" {} (block '{}')", m.name, s.model.bodies.name[m.block]);
-      fmt::print("\ntable: {}\nread and built in {:.2f} s, contacts detected in {:.2f} s\n",
-                 s.table ? "'" + s.model.bodies.name[*s.table] + "'" : std::string("none (no base block: no record can move it)"), load_seconds,
-                 detection_seconds);
-    }
-    if (!missing.empty()) {
-      std::string list;
-      for (const auto& m : missing) list += (list.empty() ? "" : ", ") + m;
-      std::fprintf(stderr, "blockdem check: %s: groups touch without a joint law: %s; add them to \"joints\"\n", path.c_str(), list.c_str());
-      return programs::exit_bad_input;
-    }
-    return 0;
-  }
-};
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -271,20 +230,30 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   RunCommand run;
   auto* run_app = app.add_subcommand("run", "settle the structure and shake it at each level in turn (the incremental analysis)");
-  CheckCommand check;
-  auto* check_app = app.add_subcommand("check", "read the model file, build the blocks and detect the contacts");
+  programs::CheckCommand check;
+  auto* check_app = app.add_subcommand("check", "check a model file or a geometry file (OBJ, 3DEC deck, COMPAS): each block's shape, "
+                                                "overlaps, blocks touching nothing; for a model file also its contacts and laws");
   check.add_to(*check_app);
+  programs::GenerateCommand generate;
+  auto* generate_app = app.add_subcommand("generate", "write the model file of a common typology on stdout: wall, barrel-vault, arch, "
+                                                      "cross-vault (blockdem generate wall --opening 0.75,1.25,6,14 > wall.json)");
+  programs::ExportCommand export_command;
+  auto* export_app = app.add_subcommand("export", "write the blocks of a model file or geometry file as OBJ or a 3DEC deck");
+  export_command.add_to(*export_app);
   SweepCommand sweep;
   auto* sweep_app = app.add_subcommand("sweep", "many studies of the model file a sweep file names: damping grids, records, "
                                                 "levels or intensity targets (IDA), on MPI ranks when built with MPI");
   const char* command = "run";  // for messages: the subcommand typed, before it is parsed
-  for (const char* name : {"check", "sweep"})
+  for (const char* name : {"check", "sweep", "export", "generate"})
     if (argc > 1 && std::string(argv[1]) == name) command = name;
   try {
     run.add_to(*run_app);
+    generate.add_to(*generate_app);
     sweep.add_to(*sweep_app);
     if (const auto status = programs::parse_command_line(app, argc, argv)) return *status;
     if (sweep_app->parsed()) return sweep.run(argc, argv);
+    if (export_app->parsed()) return export_command.run();
+    if (generate_app->parsed()) return generate.run();
     return check_app->parsed() ? check.run() : run.run();
   } catch (const InvalidArgument& e) {
     std::fprintf(stderr, "blockdem %s: error: %s\n", command, e.what());

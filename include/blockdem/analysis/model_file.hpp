@@ -10,6 +10,7 @@
 #include <limits>
 #include <fstream>
 #include <map>
+#include <span>
 #include <sstream>
 #include <optional>
 #include <string>
@@ -17,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "blockdem/analysis/model_file_geometry.hpp"
 #include "blockdem/analysis/model_file_laws.hpp"
 #include "blockdem/analysis/model_file_study.hpp"
 #include "blockdem/analysis/structure.hpp"
@@ -39,6 +41,8 @@ struct ModelFile {
   StudyOptions study;
   RecordScale scale;  // the excitation's intensity target, resolved against the record at run time
   std::optional<PushoverOptions> pushover;  // "analysis": "pushover": the pushover instead of the levels
+  std::vector<geometry::BlockIssue> geometry_issues;  // what the checks of imported blocks found and fixed
+  std::vector<std::string> block_origin;  // per block, where it is defined: "walls.obj:120", "model.json:12:5"
 };
 
 namespace detail {
@@ -148,20 +152,29 @@ inline ModelFile parse_model_file(std::string_view text, const std::string& sour
       groups.push_back(name);
     }
 
-  // Blocks.
+  // Blocks: each entry one block, or (with "geometry") the blocks of a geometry file it takes.
   const auto& blocks = io::array_value(top.required("blocks", "the list of blocks"), "blocks", 1);
   std::map<std::string, std::size_t> by_name;  // detail::ambiguous: more than one
   std::vector<std::pair<std::size_t, double>> meshed;  // block, max edge
+  std::vector<const io::JsonValue*> entry_of;  // per block, its entry in "blocks"
+  std::vector<std::string> entry_path;
   std::vector<const detail::FileMaterial*> block_material;
+  detail::GeometryFiles geometry_files;
   for (std::size_t i = 0; i < blocks.size(); ++i) {
     const std::string path = "blocks[" + std::to_string(i) + "]";
-    const io::JsonFields f(blocks[i], path, {"name", "group", "material", "motion", "deformable", "box", "vertices", "faces"});
-    const std::string name = f.string("name", "block " + std::to_string(i));
-    if (!by_name.emplace(name, i).second) by_name[name] = detail::ambiguous;  // referring to it by name is an error
-    const std::string group = f.string("group", "default");
-    if (group.empty() || group == "*") io::field_error(*f.find("group"), f.path("group"), "a group needs a name (not \"\" or \"*\")");
-    auto g = std::find(groups.begin(), groups.end(), group);
-    if (g == groups.end()) g = groups.insert(groups.end(), group);
+    const io::JsonFields f(blocks[i], path, {"name", "group", "material", "motion", "deformable", "box", "vertices", "faces", "geometry",
+                                             "objects", "planarity_tolerance"});
+    const bool imported = f.has("geometry");
+    static constexpr const char* shape_keys[] = {"name", "box", "vertices", "faces"};
+    static constexpr const char* geometry_keys[] = {"objects", "planarity_tolerance"};
+    for (const char* key : imported ? std::span<const char* const>(shape_keys) : std::span<const char* const>(geometry_keys))
+      if (const auto* v = f.find(key))
+        io::field_error(*v, f.path(key), imported ? "a \"geometry\" entry takes its blocks' names and shapes from the file: drop this key"
+                                                  : "only with \"geometry\": a geometry file's blocks");
+    const auto* group_value = f.find("group");
+    const std::string given_group = f.string("group", "");
+    if (group_value && (given_group.empty() || given_group == "*"))
+      io::field_error(*group_value, f.path("group"), "a group needs a name (not \"\" or \"*\")");
     const auto& material_value = f.required("material", "the name of one of \"materials\"");
     const auto material = materials.find(io::string_value(material_value, f.path("material")));
     if (material == materials.end()) {
@@ -171,28 +184,46 @@ inline ModelFile parse_model_file(std::string_view text, const std::string& sour
     }
     const auto motion = f.choice<model::Motion>("motion", model::Motion::free,
                                                 {{"free", model::Motion::free}, {"fixed", model::Motion::fixed}, {"base", model::Motion::base}});
-    const auto shape = detail::block_shape(f);
-    try {
-      m.add_block(shape, material->second.density, name, static_cast<int>(g - groups.begin()), motion);
-    } catch (const InvalidArgument& e) {
-      io::field_error(blocks[i], path, e.what());
-    }
-    block_material.push_back(&material->second);
+    double max_edge = 0;
     if (const auto* d = f.find("deformable")) {
       const io::JsonFields df(*d, f.path("deformable"), {"max_edge"});
       if (motion != model::Motion::free) io::field_error(*d, f.path("deformable"), "only a free block can be deformable");
       if (material->second.young == 0)
         io::field_error(*d, f.path("deformable"), "a deformable block's material needs a youngs_modulus (and a poisson_ratio, default 0)");
-      meshed.emplace_back(i, df.required_number("max_edge", {0.001, 100, false, false, "m"}));
+      max_edge = df.required_number("max_edge", {0.001, 100, false, false, "m"});
+    }
+    const auto add = [&](const geometry::ConvexPolyhedron& shape, const std::string& name, std::string group, const std::string& origin) {
+      if (group.empty()) group = "default";
+      auto g = std::find(groups.begin(), groups.end(), group);
+      if (g == groups.end()) g = groups.insert(groups.end(), group);
+      const std::size_t index = m.bodies.size();
+      if (!by_name.emplace(name, index).second) by_name[name] = detail::ambiguous;  // referring to it by name is an error
+      try {
+        m.add_block(shape, material->second.density, name, static_cast<int>(g - groups.begin()), motion);
+      } catch (const InvalidArgument& e) {
+        io::field_error(blocks[i], path, e.what());
+      }
+      block_material.push_back(&material->second);
+      entry_of.push_back(&blocks[i]);
+      entry_path.push_back(path);
+      file.block_origin.push_back(origin);
+      if (max_edge > 0) meshed.emplace_back(index, max_edge);
+    };
+    if (imported) {
+      for (const auto& b : geometry_files.take(f, base_dir)) add(b.shape, b.name, given_group.empty() ? b.group : given_group, b.origin);
+    } else {
+      add(detail::block_shape(f), f.string("name", "block " + std::to_string(i)), given_group, blocks[i].where());
     }
   }
+  geometry_files.finish(source);
+  file.geometry_issues = geometry_files.issues;
   // Meshes after all blocks (the tie ends on a deformable block go to its nodes).
-  for (const auto& [i, edge] : meshed) {
-    const auto* mat = block_material[i];
+  for (const auto& [b, edge] : meshed) {
+    const auto* mat = block_material[b];
     try {
-      m.make_deformable(i, edge, model::IsotropicElastic(mat->young, mat->poisson));
+      m.make_deformable(b, edge, model::IsotropicElastic(mat->young, mat->poisson));
     } catch (const InvalidArgument& e) {
-      io::field_error(blocks[i], "blocks[" + std::to_string(i) + "].deformable", e.what());
+      io::field_error(*entry_of[b], entry_path[b] + ".deformable", e.what());
     }
   }
 
