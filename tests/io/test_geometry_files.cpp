@@ -227,9 +227,9 @@ TEST_CASE("3dec deck: malformed input is refused with its line") {
       {head + " face (0,0,0) (1,0,0) (1,1,0) dip 30 &\n" + faces, "bad.3ddat:4: unexpected 'dip' in a polyhedron"},
       {"model new\nfish define f\n  x = 1\n", "bad.3ddat:2: a FISH function with no 'end'"},
   };
-  for (const auto& [text, message] : cases) {
-    CAPTURE(text);
-    CHECK_THROWS_WITH_AS(read(text), doctest::Contains(message.c_str()), InputError);
+  for (const auto& c : cases) {  // not a structured binding: Clang 14 cannot capture one in the macros' lambdas
+    CAPTURE(c.first);
+    CHECK_THROWS_WITH_AS(read(c.first), doctest::Contains(c.second.c_str()), InputError);
   }
   CHECK_NOTHROW(read(head + " face (0,0,0) (1,0,0) (1,1,0) &\n" + faces));  // the cases' base is a valid deck
 }
