@@ -20,6 +20,7 @@
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/units.hpp"
 #include "blockdem/damping/local.hpp"
+#include "blockdem/geometry/assembly_check.hpp"
 #include "blockdem/geometry/generators.hpp"
 #include "blockdem/geometry/queries.hpp"
 #include "blockdem/integrate/simulation.hpp"
@@ -83,27 +84,17 @@ struct ArchResult {
 };
 
 /// The deepest overlap (m, >= 0) of two blocks of the model that are not both fixed, by the separating-axis test
-/// over the pairs whose bounding boxes meet.
+/// over the pairs whose bounding boxes meet (geometry/assembly_check.hpp).
 inline double deepest_overlap(const model::Model& model) {
   const auto& b = model.bodies;
   std::vector<geometry::ConvexPolyhedron> world(b.size());
-  std::vector<Vec3> lo(b.size()), hi(b.size());
+  std::vector<geometry::AssemblyBlock> blocks(b.size());
   for (std::size_t i = 0; i < b.size(); ++i) {
     world[i] = b.world_shape(i);
-    lo[i] = hi[i] = world[i].vertices.front();
-    for (const auto& v : world[i].vertices) {
-      lo[i] = lo[i].cwiseMin(v);
-      hi[i] = hi[i].cwiseMax(v);
-    }
+    blocks[i] = {&world[i], b.name[i], "", b.motion[i] == model::Motion::free};
   }
-  double deepest = 0;
-  for (std::size_t i = 0; i < b.size(); ++i)
-    for (std::size_t j = i + 1; j < b.size(); ++j) {
-      if (b.motion[i] != model::Motion::free && b.motion[j] != model::Motion::free) continue;
-      if ((lo[i].array() > hi[j].array()).any() || (lo[j].array() > hi[i].array()).any()) continue;
-      deepest = std::max(deepest, -geometry::separation(world[i], world[j]));
-    }
-  return deepest;
+  std::vector<geometry::BlockIssue> ignored;
+  return geometry::check_assembly(blocks, 0, ignored).deepest_overlap;
 }
 
 /// The arch as a model file describes it (analysis/model_file_writer.hpp): the voussoirs of analyse_arch, the
