@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "blockdem/contact/concepts.hpp"
+#include "blockdem/core/error.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
 #include "blockdem/integrate/contact_group.hpp"
@@ -326,11 +327,17 @@ class DeformableState {
     ar("rigid block truss gather list entries", d.rigid_truss_entry);
   }
 
-  // Gather lists, per group: node entries (CP index, coefficient -1 for the node side, +w for a face triangle's
-  // node) and rigid-block entries (CP index).
+  // Gather lists. Of the nodes, one list for all groups: per node its entries group after group, each the group
+  // (node_entry_group_shift and up) and the CP index, with its coefficient (-1 for the node side, +w for a face
+  // triangle's node); one loop per node with no branch on the group (six loops, one per group, each of zero to a
+  // few entries, cost the node pass mispredicted branches). Of the rigid blocks, per group (CP index).
   static constexpr std::size_t group_count = 2 * sizeof...(Laws);
-  std::array<std::vector<std::uint32_t>, group_count> node_first, node_entry, rigid_first, rigid_entry;
-  std::array<std::vector<double>, group_count> node_coefficient;
+  static constexpr unsigned node_entry_group_shift = 28;
+  static constexpr std::uint32_t node_entry_point_mask = (1u << node_entry_group_shift) - 1;
+  static_assert(group_count <= (1u << (32 - node_entry_group_shift)), "the group fits the high bits of a node entry");
+  std::vector<std::uint32_t> node_first, node_entry;
+  std::vector<double> node_coefficient;
+  std::array<std::vector<std::uint32_t>, group_count> rigid_first, rigid_entry;
   std::vector<std::array<double, 2>> material_moduli;  // Pa, bulk K and shear G per material (material_moduli_of)
   std::vector<std::uint32_t> element_first, element_entry, truss_first, truss_entry, rigid_truss_first, rigid_truss_entry;
 
@@ -362,32 +369,38 @@ class DeformableState {
 
   void build_contact_lists(const model::Model& m) {
     const std::size_t nodes = m.deformable.nodes.size(), blocks = m.bodies.size();
-    std::size_t group = 0;
+    // The nodes' list: (group, CP, coefficient) in group order, then in increasing CP order, per node.
+    node_first.assign(nodes + 1, 0);
     for_each_group([&](const auto& g) {
       using G = std::remove_cvref_t<decltype(g)>;
-      // (node, CP, coefficient) triples in increasing CP order per node.
-      std::vector<std::uint32_t> count(nodes + 1, 0);
+      if (g.size() > node_entry_point_mask) throw InvalidArgument("a node contact group has more than 2^28 contact points");
       for (std::size_t k = 0; k < g.size(); ++k) {
-        ++count[g.node[k] + 1];
+        ++node_first[g.node[k] + 1];
         if constexpr (G::FaceKinematics::deformable)
-          for (auto n : g.triangle[k]) ++count[n + 1];
+          for (auto n : g.triangle[k]) ++node_first[n + 1];
       }
-      for (std::size_t i = 0; i < nodes; ++i) count[i + 1] += count[i];
-      auto& entry = node_entry[group];
-      auto& coefficient = node_coefficient[group];
-      entry.assign(count.back(), 0);
-      coefficient.assign(count.back(), 0.0);
-      std::vector<std::uint32_t> next(count.begin(), count.end() - 1);
+    });
+    for (std::size_t i = 0; i < nodes; ++i) node_first[i + 1] += node_first[i];
+    node_entry.assign(node_first.back(), 0);
+    node_coefficient.assign(node_first.back(), 0.0);
+    std::vector<std::uint32_t> next(node_first.begin(), node_first.end() - 1);
+    std::uint32_t group_bits = 0;
+    for_each_group([&](const auto& g) {
+      using G = std::remove_cvref_t<decltype(g)>;
       for (std::size_t k = 0; k < g.size(); ++k) {
         auto put = [&](std::uint32_t n, double c) {
-          entry[next[n]] = static_cast<std::uint32_t>(k);
-          coefficient[next[n]++] = c;
+          node_entry[next[n]] = group_bits | static_cast<std::uint32_t>(k);
+          node_coefficient[next[n]++] = c;
         };
         put(g.node[k], -1.0);
         if constexpr (G::FaceKinematics::deformable)
           for (std::size_t j = 0; j < 3; ++j) put(g.triangle[k][j], g.weight[k][j]);
       }
-      node_first[group] = std::move(count);
+      group_bits += 1u << node_entry_group_shift;
+    });
+    std::size_t group = 0;
+    for_each_group([&](const auto& g) {
+      using G = std::remove_cvref_t<decltype(g)>;
       std::vector<std::uint32_t> rcount(blocks + 1, 0);
       if constexpr (!G::FaceKinematics::deformable)
         for (std::size_t k = 0; k < g.size(); ++k) ++rcount[g.face_block[k] + 1];

@@ -181,6 +181,12 @@ bool node_pass(State& state, model::Model& m, const Damping& damping, double dt,
   const Vec3 gravity = m.gravity;
   const auto count = static_cast<std::ptrdiff_t>(nd.size());
   bool moved = false;
+  // The node contact forces of every group, in the order of the groups (node entries name the group).
+  std::array<const Vec3*, State::group_count> group_force{};
+  {
+    std::size_t group = 0;
+    state.for_each_group([&](const auto& g) { group_force[group++] = g.force.data(); });
+  }
   // The frame's acceleration over the step and its velocity at mid-step, the same for every node (no division per
   // node): the inertia force m a_frame of the moving frame, and the frame's work (m dv - F dt) . v_frame.
   [[maybe_unused]] const Vec3 frame_acceleration = (frame.after - frame.before) / dt;
@@ -193,14 +199,10 @@ bool node_pass(State& state, model::Model& m, const Damping& damping, double dt,
       const std::uint32_t code = state.element_entry[e];
       force += state.element_force[code >> 2][code & 3u];
     }
-    std::size_t group = 0;
-    state.for_each_group([&](const auto& g) {
-      const auto& first = state.node_first[group];
-      const auto& entry = state.node_entry[group];
-      const auto& coefficient = state.node_coefficient[group];
-      for (std::uint32_t e = first[i]; e < first[i + 1]; ++e) force += coefficient[e] * g.force[entry[e]];
-      ++group;
-    });
+    for (std::uint32_t e = state.node_first[i]; e < state.node_first[i + 1]; ++e) {
+      const std::uint32_t code = state.node_entry[e];
+      force += state.node_coefficient[e] * group_force[code >> State::node_entry_group_shift][code & State::node_entry_point_mask];
+    }
     for (std::uint32_t e = state.truss_first[i]; e < state.truss_first[i + 1]; ++e) {
       const std::uint32_t code = state.truss_entry[e];
       force += (code & 1u) ? Vec3(-state.truss_force[code >> 1]) : state.truss_force[code >> 1];

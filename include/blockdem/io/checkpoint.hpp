@@ -323,7 +323,7 @@ inline constexpr std::string_view checkpoint_magic = "BLOCKDEM-CKPT";
 /// 3: the timestep hold, TimestepHold; 4: the laws' histories keep the closure impulse, contact/closure_impulse.hpp;
 /// 5: the elastic law's history keeps whether a point was ever bonded, and the simulation the timestep of its last
 /// move), so that a checkpoint of an earlier build is refused by name instead of being read out of step.
-inline constexpr std::uint32_t checkpoint_format_version = 5;
+inline constexpr std::uint32_t checkpoint_format_version = 6;
 
 /// What a checkpoint's header says.
 struct CheckpointHeader {
