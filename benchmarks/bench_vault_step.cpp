@@ -135,7 +135,7 @@ double peak_gflops() {
 /// The cost of each pass of the deformable step on its own, on copies of the model and of the state.
 template <class D>
 void passes(const char* name, Contender<D>& c, int threads, int repeats) {
-  auto& sim = *c.simulation;
+  const auto& sim = *c.simulation;
   const auto& m0 = sim.model();
   if (m0.deformable.empty()) return;
   model::Model m = m0;
@@ -148,28 +148,46 @@ void passes(const char* name, Contender<D>& c, int threads, int repeats) {
   struct Pass {
     const char* what;
     double items;
-    double bytes, flops;  // per item (counted in the code of each pass)
+    double bytes, flops;  // per item
     std::vector<double> us;
   };
-  // Bytes per item: what each pass reads and writes of its arrays (8-byte doubles; 4-byte indices), counting a
-  // node's position or velocity read through an index once per use (the cache may keep it; the bound is then lower).
-  constexpr bool tensor = std::remove_cvref_t<decltype(state)>::tensor_form;
-  const double element_state_bytes = static_cast<double>(sizeof(typename std::remove_cvref_t<decltype(state)>::ElementState)) /
-                                     (tensor ? static_cast<double>(std::remove_cvref_t<decltype(state)>::element_tile) : 1.0);
+  // Bytes per item: what each pass reads and writes of its arrays, from the sizes of their elements, counting a node's
+  // position or velocity read through an index once per use (the caches may keep it; the bound is then lower).
+  // Flops per item: counted by hand in the code of each pass (multiplications, additions, a square root or a division
+  // as one).
+  using State = std::remove_cvref_t<decltype(state)>;
+  constexpr bool tensor = State::tensor_form;
+  constexpr double vec = sizeof(Vec3);
+  const double element_state_bytes = static_cast<double>(sizeof(typename State::ElementState)) /
+                                     (tensor ? static_cast<double>(State::element_tile) : 1.0);
+  // velocities 4 x 24, gradients 96, nodes 16, material 2, volume 8, stress read and written, branch states read and
+  // written, forces 96 written
+  const double element_bytes = 4 * vec + 4 * vec + 16 + 2 + 8 + 2 * 48 + 2 * element_state_bytes + 4 * vec;
+  double contact_bytes = 0;  // summed over the points, then per point
+  state.for_each_group([&](const auto& g) {
+    using G = std::remove_cvref_t<decltype(g)>;
+    double b = 4 + 2 + 8 + 2.0 * sizeof(typename G::History) + 3 * 8 + vec + 2 * 8;  // node, property, area, history,
+                                                                                       // traction, force, slip work
+    if constexpr (damping::PerSpringDamping<D>) b += 2.0 * sizeof(typename G::SpringState) + 2 * 8;
+    if constexpr (G::FaceKinematics::deformable) b += 12 + 24 + 3 * vec + 4 * vec;  // triangle, weights, x, v
+    else b += 3 * vec + 2 * vec + 4 + 72 + 2 * vec + vec;  // frame in the block, node v, block, rotation, v, w, moment
+    contact_bytes += b * static_cast<double>(g.size());
+  });
+  contact_bytes /= static_cast<double>(std::max<std::size_t>(node_points, 1));
+  const double element_entries = static_cast<double>(state.element_entry.size()) / nodes;
+  const double contact_entries = static_cast<double>(state.node_entry.size()) / nodes;
+  // per entry: the entry and the force (elements), the entry, its coefficient and the force (contacts); per node:
+  // three list heads, force written, velocity and position read and written, three masses, fixity, four energies
+  // (kinetic written, the others read and written), the position at the last detection
+  const double node_bytes = element_entries * (4 + vec) + contact_entries * (4 + 8 + vec) + 3 * 4 + vec + 4 * vec + 3 * 8 + 1 +
+                            8 + 2 * 3 * 8 + vec;
   std::vector<Pass> p{
-      // velocity 4 x 24, gradient 96, nodes 16, material 4, volume 8, stress 48 r + w, branch states r + w, forces 96 w
-      {"elements", tets, 96 + 96 + 16 + 4 + 8 + 96 + 2 * element_state_bytes + 96, tensor ? 260.0 : 230.0, {}},
-      // node, property 6, area 8, frame or triangle+weights 72, velocities 2 x 24 (rigid: block 48 + rotation 72),
-      // history 24 r + w, spring states 3 x 8 r + w (Maxwell<3>: 3 x 24), traction 24 w, force 24 w, moment 24,
-      // two dissipations 16 r + w
-      {"node contacts", static_cast<double>(node_points), 4 + 6 + 8 + 72 + 48 + 72 + 48 + 2 * 3 * (tensor ? 24.0 : 8.0) + 24 + 48 + 32, 180, {}},
-      // gather: ~4.9 element entries (4 + 24) + ~1 contact entry (4 + 8 + 24) per node, then mass, velocity,
-      // position, energies, masses
-      {"node update", nodes, 4.9 * 28 + 36 + 24 * 4 + 8 * 6, 90, {}},
+      {"elements", tets, element_bytes, tensor ? 260.0 : 200.0, {}},
+      {"node contacts", static_cast<double>(node_points), contact_bytes, damping::PerSpringDamping<D> ? 180.0 : 150.0, {}},
+      {"node update", nodes, node_bytes, 6 * (element_entries + contact_entries) + 40, {}},
       {"forces on rigid blocks", static_cast<double>(m.bodies.size()), 0, 0, {}},
   };
   omp_set_num_threads(threads);
-  std::vector<double> step_us;
   for (int r = 0; r < repeats; ++r) {
     auto t0 = clock_type::now();
     node_contact_passes(state, m, damping, dt, w);
@@ -180,16 +198,16 @@ void passes(const char* name, Contender<D>& c, int threads, int repeats) {
     auto t3 = clock_type::now();
     node_pass(state, m, damping, dt, dt, true, 1e9);
     auto t4 = clock_type::now();
-    sim.step();
-    auto t5 = clock_type::now();
     p[1].us.push_back(microseconds(t0, t1));
     p[0].us.push_back(microseconds(t1, t2));
     p[3].us.push_back(microseconds(t2, t3));
     p[2].us.push_back(microseconds(t3, t4));
-    step_us.push_back(microseconds(t4, t5));
   }
-  const double step = quantile(step_us, 0.5);
-  std::printf("%s, %d thread%s: step %.0f us (median of %d)\n", name, threads, threads > 1 ? "s" : "", step, repeats);
+  // The whole step: the median of the turns on as many threads (the passes run on copies of the state, which the
+  // step would push out of the caches if it ran between them).
+  const double step = quantile(threads > 1 ? c.threaded_step_us : c.step_us, 0.5);
+  std::printf("%s, %d thread%s: step %.0f us (the turns' median), passes the median of %d\n", name, threads, threads > 1 ? "s" : "", step,
+              repeats);
   std::printf("  %-24s %10s %9s %8s %10s %10s %8s %8s\n", "pass", "items", "us/step", "share", "ns/item", "bytes/item",
               "GB/s", "flop/B");
   double sum = 0;
@@ -266,11 +284,10 @@ int main(int argc, char** argv) {
     report_paired("speed-up of " + n + " threads, Maxwell<3>", maxwell.turn_us, maxwell.threaded_turn_us);
   }
   if (with_passes && !m.deformable.empty()) {
-    std::size_t state_bytes = 0;
-    {
-      const auto& te = m.deformable.tetrahedra;
-      state_bytes = te.size() * 700 + m.deformable.nodes.size() * 300;
-    }
+    // About what one step of the deformable vault reads and writes with Maxwell<3> (elements 700 bytes, node contacts
+    // 500, nodes 300): the triad runs over as much.
+    const std::size_t state_bytes = m.deformable.tetrahedra.size() * 700 + mass.simulation->contact_points() * 500 +
+                                    m.deformable.nodes.size() * 300;
     std::printf("this machine: triad %.1f GB/s on 1 thread, %.1f GB/s on %d over %.1f MB (the deformable state's size); "
                 "peak %.1f GFLOP/s per thread\n",
                 triad_bandwidth(state_bytes, 1), triad_bandwidth(state_bytes, threads), threads, 1e-6 * static_cast<double>(state_bytes),
