@@ -64,10 +64,22 @@ class NodeContactAssignment {
       const bool da = m.deformable.is_deformable(c.a), db = m.deformable.is_deformable(c.b);
       if (!da && !db) continue;
       const auto params = choose(m.bodies.joint_tag[c.a], m.bodies.joint_tag[c.b]);
-      std::visit([&](const auto& p) {
-        pair_contacts(state, m, p, candidates.data() + begin, candidates.data() + end, da, db, cos_max, old, keep_history,
-                      carried_slip, carried_viscous);
-      }, params);
+      // One joint per plane: the detection gives the CPs of every face pair of two blocks together, and two blocks
+      // may touch on two faces at an angle (the webs of the vault at its groins). Measured on one plane, the nodes of
+      // the other face came in centimetres off their joint, as contact points overlapped by that much.
+      rest_.assign(candidates.begin() + static_cast<std::ptrdiff_t>(begin), candidates.begin() + static_cast<std::ptrdiff_t>(end));
+      while (!rest_.empty()) {
+        const Vec3 n0 = rest_.front().normal, p0 = rest_.front().position;
+        plane_.clear();
+        other_.clear();
+        for (const auto& cp : rest_)
+          (cp.normal.dot(n0) >= same_plane_cos && std::abs((cp.position - p0).dot(n0)) <= settings.tolerance ? plane_ : other_).push_back(cp);
+        std::visit([&](const auto& p) {
+          pair_contacts(state, m, p, plane_.data(), plane_.data() + plane_.size(), da, db, cos_max, settings.tolerance, old,
+                        keep_history, carried_slip, carried_viscous);
+        }, params);
+        rest_.swap(other_);
+      }
     }
     state.retired_slip += old_slip - carried_slip;
     state.retired_viscous += old_viscous - carried_viscous;
@@ -77,6 +89,10 @@ class NodeContactAssignment {
     for (auto& p : previous_pairs) p.clear();
     previous_sides.clear();
   }
+
+  /// Two CPs of a pair are on one joint when their normals are within 0.01 rad and their positions within the
+  /// contact tolerance of one plane.
+  static constexpr double same_plane_cos = 0.99995;  // cos(0.01)
 
   template <std::size_t... I>
   void index_old_contacts(const Groups& old, std::index_sequence<I...>) {
@@ -95,6 +111,8 @@ class NodeContactAssignment {
         ...);
   }
    private:
+  std::vector<model::ContactCandidate> rest_, plane_, other_;  // a pair's CPs still to place, on this plane, on others
+
   static std::uint64_t contact_key(std::uint64_t node, std::uint64_t face_block) { return (node << 32) | face_block; }
 
   static double sum(const std::vector<double>& v) {
@@ -120,8 +138,8 @@ class NodeContactAssignment {
   /// The node CPs of one block pair.
   template <class Params>
   void pair_contacts(State& state, const model::Model& m, const Params& params, const model::ContactCandidate* first,
-                     const model::ContactCandidate* last, bool da, bool db, double cos_max, Groups& old, bool keep_history,
-                     double& carried_slip, double& carried_viscous) {
+                     const model::ContactCandidate* last, bool da, bool db, double cos_max, double settings_tolerance, Groups& old,
+                     bool keep_history, double& carried_slip, double& carried_viscous) {
     const auto& x = m.deformable.nodes.position;
     const std::size_t a = first->a, b = first->b;
     const Vec3 n_ab = first->normal, t1 = first->tangent, t2 = n_ab.cross(t1);
@@ -203,9 +221,11 @@ class NodeContactAssignment {
         const typename G::SpringState spring{};
         Vec3 tt1 = t1;
         double gap = 0, slip = 0, viscous = 0;
-        const std::size_t k = g.size();
-        g.add(node, static_cast<std::uint32_t>(ns), static_cast<std::uint32_t>(fs), static_cast<std::uint16_t>(property), area, h,
-              spring, 0, 0);
+        // The point of the face side: the triangle the node's projection lies the most inside of (deformable), or
+        // the face of the rigid block that faces the node; the gap along the joint's normal.
+        std::array<std::uint32_t, 3> triangle{};
+        std::array<double, 3> weight{};
+        Vec3 point = Vec3::Zero();
         if constexpr (G::FaceKinematics::deformable) {
           const auto& fblk = m.deformable.blocks[static_cast<std::size_t>(m.deformable.block_of_body[fs])];
           double best = -1e300;
@@ -219,19 +239,34 @@ class NodeContactAssignment {
             const double inside = std::min({w[0], w[1], w[2]});
             if (inside > best) {
               best = inside;
-              g.triangle[k] = tri;
-              g.weight[k] = w;
+              triangle = tri;
+              weight = w;
               gap = s;
               tt1 = e1.normalized();
             }
           }
+          if (!(best > -1e300)) continue;  // no face of the other block faces the node
         } else {
           const Vec3 nf = face_world.face_normal(face_index);
           const double s = nf.dot(face_world.face_centroid(face_index) - xn) / nf.dot(n);
-          const Vec3 p = xn + s * n;
+          point = xn + s * n;
           gap = s;
+        }
+        // A node farther than twice the contact tolerance from the other block's face is not on this joint: the
+        // faces of a joint are within the tolerance of each other when it is detected, and between two detections
+        // nothing moves more than half of it. Such a node lies on a face next to the joint's that faces the same
+        // way within the normal angle and projects onto a sliver of the overlap (where the webs of the vault meet
+        // at its groins); with a contact point, it came in overlapped by centimetres.
+        if (std::abs(gap) > 2.0 * settings_tolerance) continue;
+        const std::size_t k = g.size();
+        g.add(node, static_cast<std::uint32_t>(ns), static_cast<std::uint32_t>(fs), static_cast<std::uint16_t>(property), area, h,
+              spring, 0, 0);
+        if constexpr (G::FaceKinematics::deformable) {
+          g.triangle[k] = triangle;
+          g.weight[k] = weight;
+        } else {
           const Mat3& r = m.bodies.rotation[fs];
-          g.point_local[k] = r.transpose() * (p - m.bodies.position[fs]);
+          g.point_local[k] = r.transpose() * (point - m.bodies.position[fs]);
           g.normal_local[k] = r.transpose() * n;
           g.tangent_local[k] = r.transpose() * t1;
         }
