@@ -7,10 +7,12 @@
 #include "../approx.hpp"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "blockdem/contact/elastic.hpp"
 #include "blockdem/damping/none.hpp"
@@ -217,6 +219,61 @@ TEST_CASE("timestep: for a deformable block the bound lies above omega_max, whic
   CHECK(run_at(0.98 * 2 / exact) < 1e3);
   CHECK(run_at(1.02 * 2 / exact) > 1e5);
   CHECK(run_at(sim.critical_timestep()) < 1e3);
+}
+
+TEST_CASE("timestep: the stored norms of element blocks and node springs give each row's sums of a direct solution") {
+  // Reference: Eigen's SVD of each scaled block M_i^-1/2 K_ij M_j^-1/2, with a node fixed on one axis only (its
+  // block is solved, not scaled) beside free and fully fixed nodes (scaled by one number each).
+  Cantilever c;
+  auto& nd = c.model.deformable.nodes;
+  std::size_t partly = 0;
+  while (nd.fixity[partly] != 0) ++partly;
+  nd.fixity[partly] = 2;  // y fixed
+  const auto& te = c.model.deformable.tetrahedra;
+  FrequencyBound stored(c.model), direct(c.model);
+  std::vector<double> coupled(nd.size(), 0.0);
+  const auto scale = [&](std::size_t n) {
+    Vec3 s;
+    for (int d = 0; d < 3; ++d) s[d] = (nd.fixity[n] & (1u << d)) ? 0.0 : 1.0 / std::sqrt(nd.mass[n]);
+    return s;
+  };
+  for (std::size_t t = 0; t < te.size(); ++t) {
+    const auto& mat = c.model.deformable.materials[te.material[t]];
+    const auto norms = FrequencyBound::tetrahedron_pair_norms(te.gradient[t], te.volume[t], mat.bulk(), mat.shear());
+    stored.tetrahedron(te.node[t], te.gradient[t], te.volume[t], mat.bulk(), mat.shear(), &norms);
+    direct.tetrahedron(te.node[t], te.gradient[t], te.volume[t], mat.bulk(), mat.shear());
+    for (const auto& [i, j] : FrequencyBound::tetrahedron_pairs) {
+      const Mat3 k = FrequencyBound::tetrahedron_block(te.gradient[t], te.volume[t], mat.bulk(), mat.shear(), i, j);
+      const double norm = Eigen::JacobiSVD<Mat3>(Mat3(scale(te.node[t][i]).asDiagonal() * k * scale(te.node[t][j]).asDiagonal())).singularValues()[0];
+      coupled[te.node[t][i]] += norm;
+      coupled[te.node[t][j]] += norm;
+    }
+  }
+  // A contact spring between two free nodes and one from the partly fixed node (kn 1e10, ks 4e9 N/m along n).
+  const Vec3 n = Vec3(1, 2, 2) / 3.0;
+  const Mat3 d = 1e10 * n * n.transpose() + 4e9 * (Mat3::Identity() - n * n.transpose());
+  std::size_t a = partly + 1, b = 0;
+  while (nd.fixity[a] != 0) ++a;
+  b = a + 1;
+  while (nd.fixity[b] != 0) ++b;
+  for (auto* bound : {&stored, &direct}) {
+    bound->spring({FrequencyBound::node_point(a)}, {FrequencyBound::node_point(b, 0.5), FrequencyBound::node_point(partly, 0.5)}, d);
+  }
+  const double free_pair = 0.5 * 1e10 / std::sqrt(nd.mass[a] * nd.mass[b]);  // ||D|| = max(kn, ks)
+  coupled[a] += free_pair + 0.5 * Eigen::JacobiSVD<Mat3>(Mat3(scale(a).asDiagonal() * d * scale(partly).asDiagonal())).singularValues()[0];
+  coupled[b] += free_pair + 0.25 * Eigen::JacobiSVD<Mat3>(Mat3(scale(b).asDiagonal() * d * scale(partly).asDiagonal())).singularValues()[0];
+  coupled[partly] += 0.5 * Eigen::JacobiSVD<Mat3>(Mat3(scale(a).asDiagonal() * d * scale(partly).asDiagonal())).singularValues()[0] +
+                     0.25 * Eigen::JacobiSVD<Mat3>(Mat3(scale(b).asDiagonal() * d * scale(partly).asDiagonal())).singularValues()[0];
+  double worst = 0;
+  for (std::size_t i = 0; i < nd.size(); ++i) {
+    CHECK(stored.node_row(i).own == direct.node_row(i).own);
+    worst = std::max({worst, std::abs(stored.node_row(i).coupled - coupled[i]) / std::max(coupled[i], 1e-300),
+                      std::abs(direct.node_row(i).coupled - coupled[i]) / std::max(coupled[i], 1e-300)});
+  }
+  MESSAGE(te.size() << " elements, " << nd.size() << " nodes: largest relative difference of a row's coupled sum " << worst);
+  CHECK(worst < 1e-12);
+  CHECK(stored.node_row(partly).coupled > 0);
+  CHECK(stored.omega_max() == doctest::Approx(direct.omega_max()).epsilon(1e-13));
 }
 
 namespace {

@@ -283,9 +283,10 @@ void with_settled_structure(Structure& s, const StudyOptions& o, StudyResult& r,
     double target = o.target_dt;
     if (target == 0) {
       double lo = unscaled, hi = 1e-3;
+      const FrequencyBound bound = settle.frequency_bound();  // the masses do not change during the search
       for (int it = 0; it < 60; ++it) {
         const double mid = std::sqrt(lo * hi);
-        (100 * settle.density_scaling_mass(mid, factor) / free_mass <= o.default_mass_increase_percent ? lo : hi) = mid;
+        (100 * settle.density_scaling_mass(mid, factor, bound) / free_mass <= o.default_mass_increase_percent ? lo : hi) = mid;
       }
       target = lo;
     }

@@ -20,6 +20,7 @@
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
 #include "blockdem/integrate/contact_group.hpp"
+#include "blockdem/integrate/frequency_bound.hpp"
 #include "blockdem/io/checkpoint.hpp"
 #include "blockdem/kinematics/concepts.hpp"
 #include "blockdem/kinematics/node_contact_group.hpp"
@@ -73,6 +74,7 @@ class DeformableState {
   double extra_work = 0;                            // J, work of the weight correction of scaled rigid blocks
   double retired_slip = 0, retired_viscous = 0;
   std::vector<Vec3> detected_node_position;
+  std::vector<std::array<double, 6>> element_pair_norm;  // N/m, ||K_ij||_2 of each element's node pairs (FrequencyBound)
 
   template <class F>
   void for_each_group(F&& f) {
@@ -94,6 +96,11 @@ class DeformableState {
     element_force.assign(te.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
     element_viscous.assign((te.size() + viscous_chunk - 1) / viscous_chunk, 0.0);
     material_moduli.assign(m.deformable.materials.size(), {0.0, 0.0});
+    element_pair_norm.resize(te.size());
+    for (std::size_t t = 0; t < te.size(); ++t) {
+      const auto& mat = m.deformable.materials[te.material[t]];
+      element_pair_norm[t] = FrequencyBound::tetrahedron_pair_norms(te.gradient[t], te.volume[t], mat.bulk(), mat.shear());
+    }
     truss_force.assign(m.deformable.trusses.size(), Vec3::Zero());
     node_inverse_mass.resize(nd.size());
     for (std::size_t i = 0; i < nd.size(); ++i) node_inverse_mass[i] = 1.0 / nd.mass[i];
@@ -199,7 +206,8 @@ class DeformableState {
     const auto& materials = m.deformable.materials;
     for (std::size_t t = 0; t < te.size(); ++t) {
       const auto& mat = materials[te.material[t]];
-      bound.tetrahedron(te.node[t], te.gradient[t], te.volume[t], mat.bulk(), mat.shear());
+      bound.tetrahedron(te.node[t], te.gradient[t], te.volume[t], mat.bulk(), mat.shear(),
+                        element_pair_norm.size() == te.size() ? &element_pair_norm[t] : nullptr);
     }
     const auto& x = m.deformable.nodes.position;
     for_each_group([&](const auto& g) {

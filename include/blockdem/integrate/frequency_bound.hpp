@@ -166,6 +166,7 @@ class FrequencyBound {
     std::size_t count = 0;
     for (const auto& x : from) p[count] = x, c[count++] = -x.weight;
     for (const auto& x : to) p[count] = x, c[count++] = x.weight;
+    double d_norm = -1;  // ||D||_2, once per spring for the pairs of nodes free on all axes
     for (std::size_t i = 0; i < count; ++i)
       for (std::size_t j = i; j < count; ++j) {
         const double cc = c[i] * c[j];
@@ -173,30 +174,60 @@ class FrequencyBound {
           add_own(p[i], p[j], (i == j ? 1.0 : 2.0) * cc, d);
           continue;
         }
-        const double norm = std::abs(cc) * coupling_norm(p[i], p[j], d);
+        double coupling;
+        if (p[i].node && p[j].node && isotropic(node_scale_[p[i].index]) && isotropic(node_scale_[p[j].index])) {
+          if (d_norm < 0) d_norm = detail::spectral_norm<3, 3>(d);
+          coupling = node_scale_[p[i].index][0] * node_scale_[p[j].index][0] * d_norm;
+        } else {
+          coupling = coupling_norm(p[i], p[j], d);
+        }
+        const double norm = std::abs(cc) * coupling;
         (p[i].node ? node_coupled_ : coupled_)[p[i].index] += norm;
         (p[j].node ? node_coupled_ : coupled_)[p[j].index] += norm;
       }
   }
 
-  /// A constant-strain tetrahedron on `nodes` with shape-function gradients g (1/m), volume (m^3), bulk and shear
-  /// moduli (Pa): K_ij = V (lambda g_i g_j^T + G g_j g_i^T + G (g_i . g_j) I), lambda = K - 2 G / 3.
+  /// The stiffness block K_ij (N/m) of a constant-strain tetrahedron between its nodes i and j, from its
+  /// shape-function gradients g (1/m), volume (m^3), bulk and shear moduli (Pa): K_ij = V (lambda g_i g_j^T +
+  /// G g_j g_i^T + G (g_i . g_j) I), lambda = K - 2 G / 3.
+  static Mat3 tetrahedron_block(const std::array<Vec3, 4>& g, double volume, double bulk, double shear, std::size_t i,
+                                std::size_t j) {
+    const double lambda = bulk - 2.0 * shear / 3.0;
+    return volume * (lambda * g[i] * g[j].transpose() + shear * g[j] * g[i].transpose() + shear * g[i].dot(g[j]) * Mat3::Identity());
+  }
+
+  /// The node pairs (i, j), i < j, of a tetrahedron in the order of tetrahedron_pair_norms().
+  static constexpr std::array<std::array<std::size_t, 2>, 6> tetrahedron_pairs{{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}}};
+
+  /// ||K_ij||_2 (N/m) of a tetrahedron's six node pairs (tetrahedron_pairs): fixed by its shape and material, so a
+  /// model keeps them and the bound does not solve their eigenproblems again each time it is formed.
+  static std::array<double, 6> tetrahedron_pair_norms(const std::array<Vec3, 4>& g, double volume, double bulk, double shear) {
+    std::array<double, 6> norms{};
+    for (std::size_t p = 0; p < 6; ++p)
+      norms[p] = detail::spectral_norm<3, 3>(tetrahedron_block(g, volume, bulk, shear, tetrahedron_pairs[p][0], tetrahedron_pairs[p][1]));
+    return norms;
+  }
+
+  /// A constant-strain tetrahedron on `nodes` (see tetrahedron_block).
   void tetrahedron(const std::array<std::uint32_t, 4>& nodes, const std::array<Vec3, 4>& g, double volume, double bulk,
                    double shear) {
-    const double lambda = bulk - 2.0 * shear / 3.0;
-    for (std::size_t i = 0; i < 4; ++i)
-      for (std::size_t j = i; j < 4; ++j) {
-        const Mat3 k = volume * (lambda * g[i] * g[j].transpose() + shear * g[j] * g[i].transpose() +
-                                 shear * g[i].dot(g[j]) * Mat3::Identity());
-        if (i == j) {
-          node_own_[nodes[i]] += k;
-          continue;
-        }
-        const Mat3 a = node_scale_[nodes[i]].asDiagonal() * k * node_scale_[nodes[j]].asDiagonal();
-        const double norm = detail::spectral_norm<3, 3>(a);
-        node_coupled_[nodes[i]] += norm;
-        node_coupled_[nodes[j]] += norm;
-      }
+    tetrahedron(nodes, g, volume, bulk, shear, nullptr);
+  }
+  /// The same with its tetrahedron_pair_norms(): a pair of nodes free on all three axes (or fixed on all three)
+  /// scales its block by one number per node, ||s_i K_ij s_j|| = s_i s_j ||K_ij||, and only a pair with a node
+  /// fixed on some axes solves its eigenproblem here.
+  void tetrahedron(const std::array<std::uint32_t, 4>& nodes, const std::array<Vec3, 4>& g, double volume, double bulk,
+                   double shear, const std::array<double, 6>* pair_norms) {
+    for (std::size_t i = 0; i < 4; ++i) node_own_[nodes[i]] += tetrahedron_block(g, volume, bulk, shear, i, i);
+    for (std::size_t p = 0; p < 6; ++p) {
+      const std::size_t i = tetrahedron_pairs[p][0], j = tetrahedron_pairs[p][1];
+      const Vec3 &si = node_scale_[nodes[i]], &sj = node_scale_[nodes[j]];
+      const double norm = pair_norms && isotropic(si) && isotropic(sj)
+                              ? si[0] * sj[0] * (*pair_norms)[p]
+                              : detail::spectral_norm<3, 3>(Mat3(si.asDiagonal() * tetrahedron_block(g, volume, bulk, shear, i, j) * sj.asDiagonal()));
+      node_coupled_[nodes[i]] += norm;
+      node_coupled_[nodes[j]] += norm;
+    }
   }
 
   /// A block's or a node's row of the bound, for its present mass: lambda_max(A_ii) and sum_j ||A_ij||_2
@@ -235,6 +266,7 @@ class FrequencyBound {
     return m;
   }
   static bool same(const Point& a, const Point& b) { return a.node == b.node && a.index == b.index; }
+  static bool isotropic(const Vec3& s) { return s[0] == s[1] && s[1] == s[2]; }
 
   /// Adds c (B_a^T D B_b + B_b^T D B_a) / 2 to the diagonal block of the point's block or node (a and b on it).
   void add_own(const Point& a, const Point& b, double c, const Mat3& d) {

@@ -208,6 +208,10 @@ class Simulation {
   /// in place of the damping policy's (eq. 11, eq. 20), for the policy of a simulation still to come.
   template <class Factor>
   double density_scaling_mass(double target_dt, Factor timestep_factor) const;
+  /// The same from `bound`, this simulation's frequency_bound() of the present masses and contacts: one bound for
+  /// many targets (a search for the target timestep), the same result as forming it at each call.
+  template <class Factor>
+  double density_scaling_mass(double target_dt, Factor timestep_factor, const FrequencyBound& bound) const;
 
   /// Static mass scaling (3DEC's for static solutions; statics do not depend on the masses): every free node gets
   /// exactly the mass whose own limit 2 safety f / sqrt(k / m) is the target timestep, raised or lowered, and every
@@ -448,6 +452,9 @@ class Simulation {
   /// lowering the timestep. Without this, one stiff new contact point at a light node diverges in a few steps.
   /// Returns omega_max() after the hold (0 under static masses), from one FrequencyBound unless it raised masses.
   double hold_timestep();
+
+  /// The mass (kg) a plan adds to the present masses (negative where it lowers them).
+  double added_mass(const MassPlan& plan) const;
 
   /// The mass scaling of scale_density_to() and scale_masses_for_statics(), by `rule`.
   DensityScaling scale_masses(double target_dt, double safety_factor, MassRule rule);

@@ -9,8 +9,24 @@ namespace blockdem {
 template <damping::DampingPolicy Damping, contact::ContactLaw... Laws>
 template <class Factor>
 double Simulation<Damping, Laws...>::density_scaling_mass(double target_dt, Factor timestep_factor) const {
+  if (!bounded_frequency()) {  // static masses: the plan follows the estimate, not the bound
+    const MassPlan plan = plan_masses(*model_, groups_, deformable(), real_masses(), false, target_dt, safety_factor(),
+                                      MassRule::raise_only, timestep_factor);
+    return added_mass(plan);
+  }
+  return density_scaling_mass(target_dt, timestep_factor, frequency_bound());
+}
+
+template <damping::DampingPolicy Damping, contact::ContactLaw... Laws>
+template <class Factor>
+double Simulation<Damping, Laws...>::density_scaling_mass(double target_dt, Factor timestep_factor, const FrequencyBound& bound) const {
   const MassPlan plan = plan_masses(*model_, groups_, deformable(), real_masses(), bounded_frequency(), target_dt,
-                                    safety_factor(), MassRule::raise_only, timestep_factor);
+                                    safety_factor(), MassRule::raise_only, timestep_factor, &bound);
+  return added_mass(plan);
+}
+
+template <damping::DampingPolicy Damping, contact::ContactLaw... Laws>
+double Simulation<Damping, Laws...>::added_mass(const MassPlan& plan) const {
   double added = 0;
   for (std::size_t i = 0; i < plan.block_mass.size(); ++i) added += plan.block_mass[i] - model_->bodies.mass[i];
   for (std::size_t i = 0; i < plan.node_mass.size(); ++i) added += plan.node_mass[i] - model_->deformable.nodes.mass[i];

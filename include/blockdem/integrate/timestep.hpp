@@ -170,7 +170,8 @@ void stiffnesses(const model::Model& m, const Groups& groups, const Deformable* 
 
 template <class Groups, class Deformable, class Factor>
 MassPlan plan_masses(const model::Model& m, const Groups& groups, const Deformable* deformable, const RealMasses& real,
-                     bool bounded_frequency, double target_dt, double safety_factor, MassRule rule, Factor timestep_factor) {
+                     bool bounded_frequency, double target_dt, double safety_factor, MassRule rule, Factor timestep_factor,
+                     const FrequencyBound* given_bound = nullptr) {
   const auto& b = m.bodies;
   const auto& nd = m.deformable.nodes;
   const double margin = 1.0 + 1e-9;
@@ -179,7 +180,10 @@ MassPlan plan_masses(const model::Model& m, const Groups& groups, const Deformab
   const bool bounded = rule == MassRule::raise_only && bounded_frequency;
   std::vector<double> kt, kr, kn;
   if (!bounded) stiffnesses(m, groups, deformable, kt, kr, kn);
-  const std::optional<FrequencyBound> bound = bounded ? std::optional<FrequencyBound>(frequency_bound(m, groups, deformable)) : std::nullopt;
+  // The bound of the present masses: the caller's (one bound for many targets), else formed here.
+  std::optional<FrequencyBound> formed;
+  if (bounded && !given_bound) formed.emplace(frequency_bound(m, groups, deformable));
+  const FrequencyBound* bound = given_bound ? given_bound : (formed ? &*formed : nullptr);
   // mass (and inertia) times s: own / s + coupled / sqrt(s) <= omega_t^2, solved for x = 1 / sqrt(s)
   const auto bounded_factor = [&](const FrequencyBound::Row& row) {
     if (row.omega_squared() <= omega2) return 1.0;
