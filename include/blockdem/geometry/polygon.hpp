@@ -138,6 +138,17 @@ inline std::pair<double, Point2> area_centroid(const Polygon2& p) {
   a *= 0.5;
   return {std::abs(a), {cx / (6 * a), cy / (6 * a)}};
 }
+/// Whether `q` lies in the convex counter-clockwise polygon `p` or within `tolerance` (m) outside any of its edges.
+inline bool inside_convex(const Polygon2& p, const Point2& q, double tolerance) {
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Point2& a = p[i];
+    const Point2& b = p[(i + 1) % p.size()];
+    const double length = std::hypot(b[0] - a[0], b[1] - a[1]);
+    if (cross2(a, b, q) < -tolerance * length) return false;
+  }
+  return true;
+}
+
 /// Andrew's monotone chain, counter-clockwise, collinear points dropped.
 inline Polygon2 convex_hull(Polygon2 p) {
   std::sort(p.begin(), p.end());
