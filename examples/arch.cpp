@@ -43,6 +43,8 @@ int main(int argc, char** argv) {
                  "unbalanced force ratio below which the arch stands (or, --to-rest, its pieces rest), (0, 0.1]")
       ->capture_default_str();
   app.add_option("--max-steps", o.max_steps, "most steps, >= 100")->capture_default_str();
+  app.add_flag("--nodal-damping", o.nodal_damping, "deformable: local damping on each node's own force (3DEC's) instead of on each "
+               "voussoir's rigid-body motion and deformation apart (docs/arch.md)");
   app.add_flag("--to-rest", o.to_rest, "after a collapse, go on until the voussoirs rest on the floor");
   app.add_flag("--json", json, "print a JSON object");
   app.add_option("--vtk", o.vtk_prefix, "write PREFIX_blocks.vtu and PREFIX_contacts.vtu (final state) for ParaView");

@@ -41,6 +41,8 @@ struct ArchOptions : DeformableOptions {
   double collapse_displacement = 0; // m: a voussoir moving this far means collapse (0: a quarter of the thickness)
   long long max_steps = 400000;
   bool to_rest = false;             // after a collapse, go on until the fallen voussoirs are at rest on the floor
+  bool nodal_damping = false;       // deformable: local damping on each node's own force (3DEC's), instead of on each
+                                    // voussoir's rigid-body motion and deformation apart (damping::Local)
   std::string vtk_prefix;           // if set: <prefix>_blocks.vtu and <prefix>_contacts.vtu at the end
                                     // (and <prefix>_tetrahedra.vtu with the density scaling factor if deformable)
 
@@ -148,7 +150,9 @@ inline ArchResult analyse_arch(const ArchOptions& o) {
                                                 o.friction_angle_deg * pi / 180.0);
   model::ContactSettings contacts;
   contacts.tolerance = 1e-4 * o.radius;
-  Simulation<damping::Local, contact::MohrCoulomb> sim(model, damping::Local{}, [&](int, int) { return joint; }, contacts);
+  damping::Local local;
+  local.split_rigid_motion = !o.nodal_damping;
+  Simulation<damping::Local, contact::MohrCoulomb> sim(model, local, [&](int, int) { return joint; }, contacts);
   const auto initial = model.bodies.position;
   const auto initial_nodes = model.deformable.nodes.position;
   const double limit = o.collapse_displacement > 0 ? o.collapse_displacement : 0.25 * thickness;

@@ -14,6 +14,10 @@ namespace blockdem::damping {
 
 struct Local {
   double coefficient = 0.8;  // 3DEC's default
+  // Deformable blocks: damp each block's rigid-body motion by its resultant force and moment, and its deformation
+  // by the rest of each node's force (integrate/local_split.hpp), instead of every node by its own force. For static
+  // solves where deformable blocks may form a mechanism; rigid blocks are damped the same either way.
+  bool split_rigid_motion = false;
   using ContactState = NoState;
   constexpr double spring_stress(ContactState&, double, double, double, bool, double&) const noexcept { return 0.0; }
   static constexpr double held_stress(const ContactState&) noexcept { return 0.0; }

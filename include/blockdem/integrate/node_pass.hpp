@@ -8,11 +8,14 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/core/types.hpp"
 #include "blockdem/damping/concepts.hpp"
 #include "blockdem/damping/frame.hpp"
+#include "blockdem/damping/local.hpp"
+#include "blockdem/integrate/local_split.hpp"
 #include "blockdem/model/model.hpp"
 
 namespace blockdem {
@@ -171,6 +174,41 @@ void gather_rigid(State& state, const model::Model& m, double increment_dt) {
   }
 }
 
+/// The velocity and position update of every deformable block's nodes under split local damping
+/// (integrate/local_split.hpp), after the node pass has gathered their forces into nd.force.
+template <class State>
+bool split_node_update(State& state, model::Model& m, const damping::Local& damping, double dt, double increment_dt,
+                       bool move, double redetection) {
+  auto& nd = m.deformable.nodes;
+  const auto& blocks = m.deformable.blocks;
+  const Vec3 gravity = m.gravity;
+  const double c = damping.coefficient;
+  const auto count = static_cast<std::ptrdiff_t>(blocks.size());
+  bool moved = false;
+#pragma omp parallel for schedule(dynamic, 8) if (count > 16) reduction(|| : moved)
+  for (std::ptrdiff_t bb = 0; bb < count; ++bb) {
+    const auto& blk = blocks[static_cast<std::size_t>(bb)];
+    detail::SplitLocalDamping split;
+    const bool whole = detail::split_local_damping(blk, nd, c, split);
+    for (std::uint32_t i = blk.first_node; i < blk.end_node; ++i) {
+      const Vec3 v_old = nd.velocity[i];
+      const Vec3 d = whole ? split.force(nd, i) : detail::local_damping_force(c, nd.force[i], v_old);
+      Vec3 v = v_old + (dt * state.node_inverse_mass[i]) * (nd.force[i] + d);
+      for (int k = 0; k < 3; ++k)
+        if (nd.fixity[i] & (1u << k)) v[k] = 0.0;
+      nd.velocity[i] = v;
+      state.node_kinetic[i] = 0.5 * nd.mass[i] * v_old.dot(v);
+      state.node_viscous[i] -= d.dot(0.5 * (v_old + v)) * dt;
+      state.node_gravity_work[i] += nd.real_mass[i] * gravity.dot(v_old) * increment_dt;
+      if (move) {
+        nd.position[i] += dt * v;
+        moved = moved || (nd.position[i] - state.detected_node_position[i]).squaredNorm() > redetection * redetection;
+      }
+    }
+  }
+  return moved;
+}
+
 /// Gather (elements, contacts, trusses in a fixed order), gravity with the real mass, damped velocity update with
 /// the scaled mass (mass-proportional damping in the frame of `frame`, as block_pass), then positions. Returns whether
 /// a node moved more than `redetection` since the last detection.
@@ -209,6 +247,8 @@ bool node_pass(State& state, model::Model& m, const Damping& damping, double dt,
     }
     force += nd.real_mass[i] * gravity;
     nd.force[i] = force;
+    if constexpr (std::is_same_v<Damping, damping::Local>)
+      if (damping.split_rigid_motion) continue;  // updated block by block below, once every force is gathered
     const damping::Inertia mass{nd.mass[i], state.node_inverse_mass[i]};
     const Vec3 v_old = nd.velocity[i];
     Vec3 v;
@@ -238,6 +278,8 @@ bool node_pass(State& state, model::Model& m, const Damping& damping, double dt,
       moved = moved || (nd.position[i] - state.detected_node_position[i]).squaredNorm() > redetection * redetection;
     }
   }
+  if constexpr (std::is_same_v<Damping, damping::Local>)
+    if (damping.split_rigid_motion) moved = split_node_update(state, m, damping, dt, increment_dt, move, redetection);
   return moved;
 }
 
