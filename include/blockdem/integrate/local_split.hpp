@@ -3,13 +3,14 @@
 // split_rigid_motion): the static solve of deformable blocks that may form a mechanism (an arch's collapse load).
 //
 // Cundall's local damping on each node takes c |f| against the node's velocity, component by component. In a
-// deformable block that drifts as a whole (a voussoir turning about a hinge), a node's velocity is mostly the drift
-// while its force is mostly the elements' vibration: the damping then acts as a friction c <|f|> against the drift,
-// larger than the small net force that drives the mechanism, and the block creeps instead of collapsing (a
-// 40-voussoir arch 40 % above its collapse load moved 2.5 mm in 400,000 steps). Here the block's resultant force
-// and moment are damped against its rigid-body velocity and angular velocity (as a rigid block's), and the rest of
-// each node's force against the rest of its velocity, with the resultant and moment of that second part removed, so
-// that neither part does work on the other's motion:
+// deformable block whose nodes' forces are mostly the elements' vibration while the block drifts as a whole (a
+// voussoir turning about a hinge), that acts as a friction c <|f|> against the drift. Here the block's resultant
+// force and moment are damped against its rigid-body velocity and angular velocity (as a rigid block's), and the
+// rest of each node's force against the rest of its velocity, with the resultant and moment of that second part
+// removed, so that neither part does work on the other's motion. Measured on a 40-voussoir arch (docs/arch.md): it
+// stands at lambda 0.1 in 56,549 steps instead of 98,999, and collapses at 0.2 in 173,799 where nodal damping gave
+// no verdict in 400,000. It does not remove the drag of the contacts' chatter on the block's resultant: a deformable
+// arch still creeps where a rigid one collapses.
 //
 //   M = sum m_i, c = sum m_i x_i / M, r_i = x_i - c, J = sum m_i (r_i.r_i 1 - r_i r_i^T)
 //   V = sum m_i v_i / M, Omega = J^-1 sum m_i r_i x v_i; F = sum f_i, T = sum r_i x f_i
