@@ -28,7 +28,8 @@
 #include <fmt/format.h>
 
 #include "blockdem/analysis/model_file.hpp"
-#include "blockdem/analysis/pushover.hpp"
+#include "blockdem/analysis/model_sweep.hpp"
+#include "blockdem/analysis/pushover_options.hpp"
 #include "blockdem/analysis/structure_check.hpp"
 #include "blockdem/analysis/study.hpp"
 #include "blockdem/integrate/run.hpp"
@@ -45,27 +46,11 @@ namespace {
 
 using namespace blockdem;
 
-/// The record level (%) that scales the record of `o` (as cut and corrected) to the model file's intensity target:
-/// a PGA or Sa(T) at 100 %.
-double scaled_record_level(const analysis::ModelFile& file, analysis::StudyOptions o, const std::string& path) {
-  std::string note;
-  o.record_level = 100;
-  return analysis::record_level_for(file.scale, analysis::detail::input_record(o, note), path);
-}
-
 /// The checks of `blockdem check` (docs/geometry-import.md), run before a study: what makes a block unusable is
 /// refused with the list; warnings go to stderr.
 void refuse_unusable(const analysis::ModelFile& file, const std::string& path) {
-  auto issues = file.geometry_issues;
-  analysis::check_structure(file.structure, issues, file.block_origin);
-  if (analysis::count_issues(issues, geometry::BlockIssue::Severity::error) > 0) {
-    std::string text = analysis::issues_text(issues);
-    text.pop_back();
-    throw InvalidArgument(path + ": the model cannot be run (blockdem check " + path + " says the same):\n" + text);
-  }
-  for (const auto& i : issues)
-    if (i.severity == geometry::BlockIssue::Severity::warning)
-      std::fprintf(stderr, "blockdem: warning: %s: %s: %s\n", path.c_str(), i.subject().c_str(), i.what.c_str());
+  for (const auto& w : analysis::refuse_unusable(file.structure, file.geometry_issues, file.block_origin, path))
+    std::fprintf(stderr, "blockdem: warning: %s: %s\n", path.c_str(), w.c_str());
 }
 
 /// `blockdem run`: the model file's study with the command line's overrides.
@@ -96,7 +81,7 @@ struct RunCommand {
     if (file.pushover) return pushover();
     // The intensity target of the file, unless the command line gives the record level.
     if (file.scale.kind != analysis::RecordScale::Kind::record_level && record_level->count() == 0)
-      study.record_level = scaled_record_level(file, study, path);
+      study.record_level = analysis::record_level_for(file.scale, study, path);
     stop_on_interrupt();
     const auto r = programs::run_study(file.structure, study);
     if (common.json) {
@@ -113,7 +98,7 @@ struct RunCommand {
     o.out_dir = study.out_dir;
     o.progress = study.progress;
     stop_on_interrupt();
-    const auto r = analysis::run_pushover(file.structure, o, study.contacts == model::ContactKinds::general);
+    const auto r = programs::run_pushover(file.structure, o, study.contacts == model::ContactKinds::general);
     if (r.falls_under_weight)
       fmt::print("'{}' does not stand under its own weight (lambda = 0 collapses)\n", file.structure.name);
     else if (r.stands_at_upper)
@@ -188,37 +173,13 @@ struct SweepCommand {
     sweep.refuse_grid_options();
     common.finish(study);
     refuse_unusable(file, spec.model);
-    if (file.pushover)
-      throw InvalidArgument(spec.model + ": study.analysis: a pushover; a sweep runs the seismic study's levels (\"levels\")");
-    if (file.structure.monitors.empty())
-      throw InvalidArgument(spec.model + ": monitor_points: a sweep's summary gives the peaks of the first monitor point; add one");
-    analysis::VaultStudyOptions base;
-    static_cast<analysis::StudyOptions&>(base) = study;
     analysis::SweepRunOptions run;
     run.out_dir = study.out_dir;
     std::ifstream model_text(spec.model, std::ios::binary);
     run.fingerprint = sweep.fingerprint(argc, argv, spec, std::string(std::istreambuf_iterator<char>(model_text), {}));
-    run.measured = spec.measured;
-    run.measured_level = spec.measured_level;
-    run.progress = study.progress;
-    const std::string& first = file.structure.monitors.front().name;
-    run.displacement_channel = first + "_u" + study.axis;
-    run.acceleration_channel = first + "_a" + study.axis;
-    run.residual_point = first;
     run.program = "blockdem sweep";
-    run.study_is_model = true;
     run.study = [this](const analysis::VaultStudyOptions& o) { return programs::run_study(file.structure, o); };
-    auto cases = analysis::expand_sweep(spec, base);
-    // A model file's intensity target (a PGA or Sa(T) at 100 %) scales each case's record as it scales the file's own,
-    // unless the sweep gives targets of its own; a record that cannot be read fails its case when it runs.
-    if (file.scale.kind != analysis::RecordScale::Kind::record_level && spec.measure == analysis::IntensityMeasure::level)
-      for (auto& c : cases) {
-        try {
-          c.options.record_level = scaled_record_level(file, c.options, spec.model);
-        } catch (const InvalidArgument&) {
-        } catch (const InputError&) {
-        }
-      }
+    const auto cases = analysis::model_sweep_cases(spec, file, study, spec.model, run);
     return programs::run_sweep_command("blockdem sweep", sweep, cases, run, argc, argv);
   }
 };

@@ -126,25 +126,12 @@ struct CheckCommand {
     const double load_seconds = std::chrono::duration<double>(clock::now() - t0).count();
     const auto& s = file.structure;
     s.validate();
-    auto issues = file.geometry_issues;
-    const auto a = analysis::check_structure(s, issues, file.block_origin);
-    auto settings = s.contacts;
-    settings.kinds = file.study.contacts;
-    s.laws.fill(settings);
-    const auto t1 = clock::now();
-    const auto contacts = model::detect_contacts(s.model.bodies, settings);
-    const double detection_seconds = std::chrono::duration<double>(clock::now() - t1).count();
-    std::map<std::pair<std::size_t, std::size_t>, long long> by_pair;
-    for (const auto& c : contacts) {
-      auto ta = static_cast<std::size_t>(s.model.bodies.joint_tag[c.a]), tb = static_cast<std::size_t>(s.model.bodies.joint_tag[c.b]);
-      if (ta > tb) std::swap(ta, tb);
-      ++by_pair[{ta, tb}];
-    }
-    for (const auto& [pair, n] : by_pair)
-      if (!s.laws.has(pair.first, pair.second))
-        issues.push_back({geometry::BlockIssue::Severity::error, "*", "",
-                          "groups '" + s.laws.name(pair.first) + "' and '" + s.laws.name(pair.second) + "' touch (" + std::to_string(n) +
-                              " contact points) without a joint law: add the pair to \"joints\""});
+    const auto c = analysis::check_structure_contacts(s, file.study.contacts, file.geometry_issues, file.block_origin);
+    const auto& a = c.assembly;
+    const auto& issues = c.issues;
+    const auto& by_pair = c.contact_points_by_pair;
+    const auto contacts = c.contact_points;
+    const double detection_seconds = c.detection_seconds;
     if (json) {
       io::JsonObject out, pairs;
       for (const auto& [pair, n] : by_pair) pairs.add(s.laws.name(pair.first) + "-" + s.laws.name(pair.second), n);
@@ -152,7 +139,7 @@ struct CheckCommand {
           .add("deformable_blocks", static_cast<long long>(s.model.deformable.blocks.size()))
           .add("tetrahedra", static_cast<long long>(s.model.deformable.tetrahedra.size()))
           .add("ties", static_cast<long long>(s.model.deformable.trusses.size())).add("groups", s.groups())
-          .add("free_mass_kg", s.model.total_mass()).add("contact_points", static_cast<long long>(contacts.size()))
+          .add("free_mass_kg", s.model.total_mass()).add("contact_points", static_cast<long long>(contacts))
           .add("contact_points_by_group_pair", pairs).add("deepest_overlap_m", a.deepest_overlap)
           .add("monitor_points", static_cast<long long>(s.monitors.size())).add("table", s.table ? s.model.bodies.name[*s.table] : "")
           .add("issues", issues_json(issues)).add("load_seconds", load_seconds).add("detection_seconds", detection_seconds);
@@ -161,7 +148,7 @@ struct CheckCommand {
       fmt::print("model '{}': {} blocks ({} deformable, {} tetrahedra), {} ties, {:.1f} kg free; groups:", s.name, s.model.bodies.size(),
                  s.model.deformable.blocks.size(), s.model.deformable.tetrahedra.size(), s.model.deformable.trusses.size(), s.model.total_mass());
       for (const auto& g : s.groups()) fmt::print(" {}", g);
-      fmt::print("\n{} contact points:", contacts.size());
+      fmt::print("\n{} contact points:", contacts);
       for (const auto& [pair, n] : by_pair) fmt::print(" {}-{} {}", s.laws.name(pair.first), s.laws.name(pair.second), n);
       fmt::print("\nmonitor points:");
       for (const auto& m : s.monitors) fmt::print(" {} (block '{}')", m.name, s.model.bodies.name[m.block]);

@@ -25,25 +25,6 @@
 
 namespace blockdem::analysis {
 
-/// One lambda tried.
-struct PushoverTrial {
-  double lambda = 0;
-  bool stands = false;
-  double max_displacement = 0;  // m, of any free block or node from where it was built
-  double unbalanced_ratio = 0;
-  long long steps = 0;
-  double wall_seconds = 0;
-};
-
-struct PushoverResult {
-  std::vector<PushoverTrial> trials;  // in the order run
-  double collapse_multiplier = 0;     // the middle of the final bracket; 0 if it falls under its own weight; upper if it stands there
-  double lower = 0, upper = 0;        // the final bracket: stands at lower, collapses at upper
-  bool stands_at_upper = false, falls_under_weight = false;
-  double collapse_displacement = 0;   // m, as used
-  double wall_seconds = 0;
-};
-
 namespace detail {
 
 /// The height of the structure's free blocks, m (max - min of their vertices' z).
@@ -76,6 +57,7 @@ inline PushoverTrial pushover_trial(Structure s, const PushoverOptions& o, doubl
   const auto initial_nodes = m.deformable.nodes.position;
   for (t.steps = 0; t.steps < o.max_steps; ++t.steps) {
     sim.step();
+    if ((t.steps & 1023) == 1023 && o.poll) o.poll();
     if (t.steps % 50 != 49) continue;
     t.max_displacement = 0;
     for (std::size_t i = 0; i < m.bodies.size(); ++i)

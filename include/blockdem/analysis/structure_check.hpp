@@ -2,14 +2,17 @@
 // The checks `blockdem check` runs and `blockdem run` runs first (docs/geometry-import.md): those of the assembly
 // (geometry/assembly_check.hpp) over a structure's blocks as placed, and the text that lists what they found.
 
+#include <chrono>
 #include <cstddef>
 #include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
 #include "blockdem/analysis/structure.hpp"
 #include "blockdem/geometry/assembly_check.hpp"
 #include "blockdem/geometry/polyhedron_check.hpp"
+#include "blockdem/model/contact_detection.hpp"
 
 namespace blockdem::analysis {
 
@@ -25,6 +28,43 @@ inline geometry::AssemblyCheck check_structure(const Structure& s, std::vector<g
     blocks[i] = {&world[i], b.name[i], i < origins.size() ? origins[i] : "", b.motion[i] == model::Motion::free};
   }
   return geometry::check_assembly(blocks, s.contacts.tolerance, issues);
+}
+
+/// What `blockdem check` finds in a structure as built: the checks of check_structure(), its contact points by pair of
+/// groups, and the pairs that touch without a joint law (each an error in `issues`, which also holds what the caller
+/// passed in: the checks of imported blocks).
+struct StructureCheck {
+  geometry::AssemblyCheck assembly;
+  std::vector<geometry::BlockIssue> issues;
+  std::size_t contact_points = 0;
+  std::map<std::pair<std::size_t, std::size_t>, long long> contact_points_by_pair;  // group indices, first <= second
+  double detection_seconds = 0;
+};
+
+/// check_structure() and the contacts of `s` as built, detected with `kinds` (the study's).
+inline StructureCheck check_structure_contacts(const Structure& s, model::ContactKinds kinds, std::vector<geometry::BlockIssue> issues,
+                                               const std::vector<std::string>& origins = {}) {
+  StructureCheck c;
+  c.assembly = check_structure(s, issues, origins);
+  auto settings = s.contacts;
+  settings.kinds = kinds;
+  s.laws.fill(settings);
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto contacts = model::detect_contacts(s.model.bodies, settings);
+  c.detection_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  c.contact_points = contacts.size();
+  for (const auto& p : contacts) {
+    auto ta = static_cast<std::size_t>(s.model.bodies.joint_tag[p.a]), tb = static_cast<std::size_t>(s.model.bodies.joint_tag[p.b]);
+    if (ta > tb) std::swap(ta, tb);
+    ++c.contact_points_by_pair[{ta, tb}];
+  }
+  for (const auto& [pair, n] : c.contact_points_by_pair)
+    if (!s.laws.has(pair.first, pair.second))
+      issues.push_back({geometry::BlockIssue::Severity::error, "*", "",
+                        "groups '" + s.laws.name(pair.first) + "' and '" + s.laws.name(pair.second) + "' touch (" + std::to_string(n) +
+                            " contact points) without a joint law: add the pair to \"joints\""});
+  c.issues = std::move(issues);
+  return c;
 }
 
 inline std::size_t count_issues(const std::vector<geometry::BlockIssue>& issues, geometry::BlockIssue::Severity severity) {
@@ -61,6 +101,23 @@ inline std::string issues_text(const std::vector<geometry::BlockIssue>& issues, 
     for (const auto& [what, n] : kinds) out += "note: " + what + " in " + std::to_string(n) + " block" + (n > 1 ? "s" : "") + "\n";
   }
   return out;
+}
+
+/// The checks of `blockdem check` that a run makes first: throws InvalidArgument listing what makes blocks of `s`
+/// unusable; returns the warnings, one line each ("block 'c3 u5' (walls.obj:120): ..."). `issues`: those found so far
+/// (a model file's imported blocks); `origins`: where each block is defined; `path`: the file, in the message.
+inline std::vector<std::string> refuse_unusable(const Structure& s, std::vector<geometry::BlockIssue> issues,
+                                                const std::vector<std::string>& origins, const std::string& path) {
+  check_structure(s, issues, origins);
+  if (count_issues(issues, geometry::BlockIssue::Severity::error) > 0) {
+    std::string text = issues_text(issues);
+    text.pop_back();
+    throw InvalidArgument(path + ": the model cannot be run (blockdem check " + path + " says the same):\n" + text);
+  }
+  std::vector<std::string> warnings;
+  for (const auto& i : issues)
+    if (i.severity == geometry::BlockIssue::Severity::warning) warnings.push_back(i.subject() + ": " + i.what);
+  return warnings;
 }
 
 }  // namespace blockdem::analysis

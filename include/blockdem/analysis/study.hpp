@@ -19,11 +19,13 @@
 #include "blockdem/analysis/damage_memory.hpp"
 #include "blockdem/analysis/corner_point_warnings.hpp"
 #include "blockdem/analysis/free_decay.hpp"
+#include "blockdem/analysis/model_file_study.hpp"
 #include "blockdem/analysis/structure.hpp"
 #include "blockdem/analysis/study_checkpoint.hpp"
 #include "blockdem/analysis/study_options.hpp"
 #include "blockdem/analysis/study_recorders.hpp"
 #include "blockdem/analysis/study_report.hpp"
+#include "blockdem/analysis/study_timestep.hpp"
 #include "blockdem/contact/elastic.hpp"
 #include "blockdem/contact/mohr_coulomb.hpp"
 #include "blockdem/contact/softening.hpp"
@@ -84,6 +86,18 @@ inline motion::Record input_record(const StudyOptions& o, std::string& cut_note)
   cut_note = "window " + num(o.window_start) + "-" + num(o.window_end) + " s";
   return motion::truncate_window(record, o.window_start, o.window_end).record;
 }
+
+}  // namespace detail
+
+/// The record level (%) at which the record of `o`, as the study cuts and corrects it, meets a model file's intensity
+/// target `scale` (a PGA or Sa(T) at 100 %); `context` names the file in messages.
+inline double record_level_for(const RecordScale& scale, StudyOptions o, const std::string& context) {
+  std::string note;
+  o.record_level = 100;
+  return record_level_for(scale, detail::input_record(o, note), context);
+}
+
+namespace detail {
 
 /// The joint laws of a structure, for its simulation Sim (StudySimulation<D>).
 template <class Sim>
@@ -271,35 +285,10 @@ void with_settled_structure(Structure& s, const StudyOptions& o, StudyResult& r,
     if (o.progress)
       for (const auto& w : r.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     // The timestep of the dynamic run, chosen before settling so that a bad target is refused at once.
-    auto factor = [&](double omega) { return policy.timestep_factor(omega); };
-    const double free_mass = r.model.free_mass;
-    {
-      // The dynamic policy multiplies 2 / omega_max (eq. 1) by its factor at omega_max (eq. 11, eq. 20).
-      const double omega_max = settle.omega_max();
-      r.timestep.damping_factor = factor(omega_max);
-      r.timestep.critical_unscaled = 2.0 / omega_max * r.timestep.damping_factor;
-    }
-    const double unscaled = settle.safety_factor() * r.timestep.critical_unscaled;
-    double target = o.target_dt;
-    if (target == 0) {
-      double lo = unscaled, hi = 1e-3;
-      const FrequencyBound bound = settle.frequency_bound();  // the masses do not change during the search
-      for (int it = 0; it < 60; ++it) {
-        const double mid = std::sqrt(lo * hi);
-        (100 * settle.density_scaling_mass(mid, factor, bound) / free_mass <= o.default_mass_increase_percent ? lo : hi) = mid;
-      }
-      target = lo;
-    }
-    if (target > unscaled) {
-      const double percent = 100 * settle.density_scaling_mass(target, factor) / free_mass;
-      if (percent > o.max_mass_increase_percent)
-        throw InvalidArgument(o.context + ": --target-dt " + num(target) + " s needs " + num(percent) +
-                              " % more mass by density scaling, above --max-mass-increase " + num(o.max_mass_increase_percent) +
-                              " %; this model runs unscaled at " + num(unscaled) + " s");
-    }
+    const auto dt = choose_dynamic_timestep(settle, settle.frequency_bound(), policy, o, r.model.free_mass, r.timestep);
 
     if (!resuming) {
-      detail::settle(settle, std::max(unscaled, target), o, r.settling);
+      detail::settle(settle, std::max(dt.unscaled, dt.target), o, r.settling);
       const auto census = damage_census(settle, model, s.laws.groups());
       r.settling.damaged_joints = census.total.damaged;
       r.settling.cracked_joints = census.total.cracked;
@@ -313,27 +302,7 @@ void with_settled_structure(Structure& s, const StudyOptions& o, StudyResult& r,
 
     Dynamic sim(settle, policy);
     sim.set_damping_frame(o.damping_frame);
-    if (!resuming && target < sim.timestep()) sim.set_timestep(target);  // a --target-dt below the unscaled one: run at it
-    if (!resuming && target > sim.timestep()) {
-      const std::vector<double> real_mass = model.bodies.mass, real_node_mass = model.deformable.nodes.mass;
-      r.timestep.scaling = sim.scale_density_to(target);
-      const auto& tag = model.bodies.joint_tag;
-      for (std::size_t i = 0; i < model.bodies.size(); ++i)
-        if (!model.deformable.is_deformable(i) && model.bodies.mass[i] > real_mass[i]) {
-          auto& where = r.timestep.added_by_group[static_cast<std::size_t>(tag[i])];
-          where.blocks += 1;
-          where.added_mass += model.bodies.mass[i] - real_mass[i];
-        }
-      const auto& nd = model.deformable.nodes;
-      for (std::size_t i = 0; i < nd.size(); ++i)
-        if (nd.mass[i] > real_node_mass[i]) {
-          auto& where = r.timestep.added_by_group[static_cast<std::size_t>(tag[nd.block[i]])];
-          where.nodes += 1;
-          where.added_mass += nd.mass[i] - real_node_mass[i];
-        }
-    }
-    r.timestep.dt = sim.timestep();
-    r.timestep.critical = sim.critical_timestep();
+    if (!resuming) set_dynamic_timestep(sim, dt.target, s, r.timestep);
 
     f(sim, policy);
   });

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "blockdem/integrate/run.hpp"
@@ -31,9 +32,10 @@ concept TaskFarm = requires(const F& farm) {
   { farm.serve_seconds() } -> std::convertible_to<double>;
 };
 
-/// Every task in order, in this process.
+/// Every task in order, in this process; each gets `poll` (may be empty: Python's Ctrl-C is heard there).
 class SerialFarm {
  public:
+  explicit SerialFarm(Poll poll = {}) : poll_(std::move(poll)) {}
   int rank() const { return 0; }
   int size() const { return 1; }
   bool lead() const { return true; }
@@ -42,10 +44,12 @@ class SerialFarm {
   template <FarmWork Work>
   std::vector<std::string> run(std::size_t tasks, Work&& work) {
     std::vector<std::string> out(tasks);
-    const Poll none;
-    for (std::size_t k = 0; k < tasks && !interrupted(); ++k) out[k] = work(k, none);
+    for (std::size_t k = 0; k < tasks && !interrupted(); ++k) out[k] = work(k, poll_);
     return out;
   }
+
+ private:
+  Poll poll_;
 };
 
 }  // namespace blockdem::parallel
