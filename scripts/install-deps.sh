@@ -5,6 +5,8 @@
 #                                      OpenMPI (for `cross_vault sweep` on MPI ranks)
 #   scripts/install-deps.sh --plots    also Python with numpy and matplotlib for the plotting scripts
 #   scripts/install-deps.sh --minpack  also scipy, for benchmarks/minpack_reference.py
+#   scripts/install-deps.sh --python   also pybind11, Python's headers, numpy, matplotlib and pytest: the Python module
+#                                      (built by CMake for the system's Python, docs/python.md), its examples and tests
 #   scripts/install-deps.sh --fuzz     also clang, libFuzzer and OpenMP for clang: scripts/run-fuzzers.sh and
 #                                      scripts/run-sanitized-tests.sh
 set -euo pipefail
@@ -15,9 +17,10 @@ for arg in "$@"; do
   case "$arg" in
     --plots) packages+=(python3 python3-numpy python3-matplotlib) ;;
     --minpack) packages+=(python3 python3-numpy python3-scipy) ;;
+    --python) packages+=(python3 python3-dev python3-numpy python3-matplotlib python3-pytest pybind11-dev) ;;
     --fuzz) packages+=(clang libclang-rt-14-dev libomp-dev) ;;
-    -h|--help) sed -n '2,10p' "$0"; exit 0 ;;
-    *) echo "install-deps.sh: unknown option '$arg' (allowed: --plots, --minpack, --fuzz)" >&2; exit 2 ;;
+    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+    *) echo "install-deps.sh: unknown option '$arg' (allowed: --plots, --minpack, --python, --fuzz)" >&2; exit 2 ;;
   esac
 done
 

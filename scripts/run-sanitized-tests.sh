@@ -31,7 +31,8 @@
 #   cases), re-detection as blocks scatter in the general-contact tests and the arch's collapse in
 #   program.arch.collapses.
 # The plotting scripts' tests (plot.*) and the CMake consumers' (cmake.*) run in the Release stage only: they test
-# Python and the package, not the instrumented code.
+# Python and the package, not the instrumented code; the Python module is not built here (an instrumented extension
+# needs the sanitizers' runtime preloaded into the interpreter).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${BLOCKDEM_SANITIZE_BUILD:-build-sanitize}
@@ -40,7 +41,7 @@ build=${BLOCKDEM_SANITIZE_BUILD:-build-sanitize}
 compiler=()
 if [ -z "${CXX:-}" ] && command -v clang++ >/dev/null; then compiler=(-DCMAKE_CXX_COMPILER=clang++); fi
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Sanitize -DBLOCKDEM_SANITIZE=ON -DBLOCKDEM_BUILD_BENCHMARKS=OFF \
-      -DBLOCKDEM_WITH_MPI=OFF -DBLOCKDEM_INSTALL=OFF "${compiler[@]}" "$@"
+      -DBLOCKDEM_WITH_MPI=OFF -DBLOCKDEM_INSTALL=OFF -DBLOCKDEM_PYTHON=OFF "${compiler[@]}" "$@"
 cmake --build "$build" --parallel 2
 export ASAN_OPTIONS=abort_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
