@@ -27,14 +27,24 @@ vault.save(path)
 options = ["--levels", "75", "--window", str(args.window[0]), str(args.window[1]), "--rest", "0.5", "--quiet"]
 
 python_s, program_s = [], []
-for k in range(args.rounds):
+
+
+def python_run(k):
     r = blockdem.run(vault, out=os.path.join(work, "python_%d" % k), levels=[75], window=tuple(args.window), rest=0.5,
                      progress=False)
     python_s.append(r.level(75)["wall_seconds"])
+
+
+def program_run(k):
     subprocess.run([args.program, "run", path, *options, "--out", os.path.join(work, "program_%d" % k)], check=True,
                    capture_output=True)
     with open(os.path.join(work, "program_%d" % k, "report.json")) as f:
         program_s.append(json.load(f)["levels"][0]["wall_seconds"])
+
+
+for k in range(args.rounds):  # taking turns, each first in every other round
+    for run in ((python_run, program_run) if k % 2 == 0 else (program_run, python_run)):
+        run(k)
     print("round %d: Python %.2f s, program %.2f s" % (k, python_s[-1], program_s[-1]))
 ratios = [p / q for p, q in zip(python_s, program_s)]
 print("level at 75 %%, %g-%g s: Python median %.2f s (%.2f-%.2f), program median %.2f s (%.2f-%.2f); "
