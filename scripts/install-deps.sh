@@ -19,7 +19,7 @@ for arg in "$@"; do
     --minpack) packages+=(python3 python3-numpy python3-scipy) ;;
     --python) packages+=(python3 python3-dev python3-numpy python3-matplotlib python3-pytest pybind11-dev) ;;
     --fuzz) packages+=(clang libclang-rt-14-dev libomp-dev) ;;
-    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
     *) echo "install-deps.sh: unknown option '$arg' (allowed: --plots, --minpack, --python, --fuzz)" >&2; exit 2 ;;
   esac
 done
