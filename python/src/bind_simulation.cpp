@@ -115,7 +115,6 @@ class Session {
     const motion::RecordMotion m(motion::scale(cut, factor), {}, analysis::axis_vector(a), sim.time(), table_velocity_);
     file_.structure.model.base_motion = motion::BaseMotion(m);
     table_velocity_ = m.final_velocity();
-    record_end_ = sim.time() + m.duration();
   }
 
   // ---- state ----
@@ -237,7 +236,6 @@ class Session {
   std::unique_ptr<Stepper> dynamic_;
   std::unique_ptr<analysis::MonitorHistory> monitors_;
   double table_velocity_ = 0;
-  double record_end_ = 0;
 };
 
 }  // namespace
