@@ -450,7 +450,7 @@ TEST_CASE("deformable threads: Maxwell<3> element tiles over several chunks give
   };
   CHECK(test::differences_between_one_and_two_threads(run) == 0);
   MESSAGE(tetrahedra << " tetrahedra");
-  CHECK(tetrahedra > 2 * State::viscous_chunk);
+  CHECK(State::element_tiles(tetrahedra) > 2);
   CHECK(tetrahedra % State::element_tile != 0);
 }
 

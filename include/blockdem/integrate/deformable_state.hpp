@@ -25,6 +25,7 @@
 #include "blockdem/kinematics/concepts.hpp"
 #include "blockdem/kinematics/node_contact_group.hpp"
 #include "blockdem/model/model.hpp"
+#include "blockdem/parallel/thread_ranges.hpp"
 
 namespace blockdem {
 
@@ -59,11 +60,10 @@ class DeformableState {
   Groups groups;
   std::vector<ElementState> element_state;  // per tile (tensor form) or per element
   std::vector<std::array<Vec3, 4>> element_force;  // N, on the element's nodes
-  /// Elements per partial sum of element_viscous: a fixed number, so that the sums (and the energy report) do not
-  /// depend on the number of threads. A per-element array cost 16 bytes read and written per element-step.
-  static constexpr std::size_t viscous_chunk = 2048;
-  static_assert(viscous_chunk % element_tile == 0, "a chunk of the viscous work is made of whole tiles");
-  std::vector<double> element_viscous;              // J, work on the element dashpots / branches, per viscous_chunk
+  /// The work on the element dashpots or branches is summed per tile of element_tile elements: a fixed grouping, so
+  /// that the sums (and the energy report) depend neither on the number of threads nor on their ranges. A
+  /// per-element array cost 16 bytes read and written per element-step; per tile it is half a byte.
+  std::vector<double> element_viscous;              // J, work on the element dashpots / branches, per tile
   std::vector<Vec3> truss_force;                    // N, on end 0 (end 1 gets the opposite)
   std::vector<double> node_inverse_mass;            // 1/kg
   std::vector<double> node_kinetic, node_gravity_work, node_viscous;
@@ -75,6 +75,12 @@ class DeformableState {
   double retired_slip = 0, retired_viscous = 0;
   std::vector<Vec3> detected_node_position;
   std::vector<std::array<double, 6>> element_pair_norm;  // N/m, ||K_ij||_2 of each element's node pairs (FrequencyBound)
+  /// The threads' ranges over the nodes, the element tiles and each group's contact points (parallel/thread_ranges.hpp),
+  /// for a team of parallel::available_threads(): runs of whole blocks. Made with the contact lists; not saved.
+  parallel::Bounds node_bounds, tile_bounds;
+  std::array<parallel::Bounds, 2 * sizeof...(Laws)> contact_bounds;
+
+  static constexpr std::size_t element_tiles(std::size_t elements) { return (elements + element_tile - 1) / element_tile; }
 
   template <class F>
   void for_each_group(F&& f) {
@@ -94,7 +100,7 @@ class DeformableState {
     const auto& te = m.deformable.tetrahedra;
     element_state.assign(tensor_form ? (te.size() + element_tile - 1) / element_tile : te.size(), ElementState{});
     element_force.assign(te.size(), {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()});
-    element_viscous.assign((te.size() + viscous_chunk - 1) / viscous_chunk, 0.0);
+    element_viscous.assign(element_tiles(te.size()), 0.0);
     material_moduli.assign(m.deformable.materials.size(), {0.0, 0.0});
     element_pair_norm.resize(te.size());
     for (std::size_t t = 0; t < te.size(); ++t) {
@@ -307,7 +313,7 @@ class DeformableState {
     std::apply([&](auto&... g) { (ar("node contact group", g), ...); }, d.groups);
     ar("element damping states", d.element_state);
     ar("element forces", d.element_force);
-    ar("element viscous work", d.element_viscous);
+    ar.same_size("element viscous work", d.element_viscous);
     ar("truss forces", d.truss_force);
     ar("node inverse masses", d.node_inverse_mass);
     ar("node kinetic energies", d.node_kinetic);
@@ -431,6 +437,74 @@ class DeformableState {
     for (std::size_t t = 0; t < trusses.size(); ++t)
       for (std::uint32_t s = 0; s < 2; ++s)
         if (trusses[t].end[s].node < 0) rigid_truss_entry[tnext[trusses[t].end[s].block]++] = static_cast<std::uint32_t>(2 * t + s);
+    build_thread_ranges(m);
+  }
+
+  /// The threads' ranges (node_bounds, tile_bounds, contact_bounds): the deformable blocks cut into runs of about
+  /// equal cost, counted from the benchmark's cost per item (ns per element, node and node contact point, one
+  /// thread: 21.7, 23.5 and 31.6, benchmarks/README.md). A run's element tiles are those whose first element is one
+  /// of its elements; its contact points in a group, those whose node is one of its nodes. A cut falls between two
+  /// blocks, or inside a block bigger than a quarter of a run (a model of a few large blocks), at the same fraction
+  /// of its nodes and of its elements. Left empty (even splits) for one thread, and when the blocks' nodes or
+  /// elements are not in block order.
+  void build_thread_ranges(const model::Model& m) {
+    const int threads = parallel::available_threads();
+    node_bounds.clear();
+    tile_bounds.clear();
+    for (auto& b : contact_bounds) b.clear();
+    const auto& blocks = m.deformable.blocks;
+    const std::size_t nodes = m.deformable.nodes.size(), elements = m.deformable.tetrahedra.size();
+    if (threads <= 1 || blocks.empty()) return;
+    std::uint32_t next_node = 0, next_element = 0;
+    for (const auto& blk : blocks) {  // in block order, each block's nodes and elements after the last one's
+      if (blk.first_node != next_node || blk.first_tetrahedron != next_element) return;
+      next_node = blk.end_node;
+      next_element = blk.end_tetrahedron;
+    }
+    if (next_node != nodes || next_element != elements) return;
+    std::vector<double> contacts_of_node(nodes, 0.0);
+    for_each_group([&](const auto& g) {
+      for (std::uint32_t n : g.node) contacts_of_node[n] += 1.0;
+    });
+    std::vector<double> cost(blocks.size(), 0.0);
+    double total = 0.0;
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      const auto& blk = blocks[b];
+      cost[b] = 21.7 * (blk.end_tetrahedron - blk.first_tetrahedron) + 23.5 * (blk.end_node - blk.first_node);
+      for (std::uint32_t i = blk.first_node; i < blk.end_node; ++i) cost[b] += 31.6 * contacts_of_node[i];
+      total += cost[b];
+    }
+    const double run = total / threads;
+    std::size_t b = 0;
+    double before = 0.0;  // cost of the blocks before b
+    node_bounds.push_back(0);
+    std::vector<std::uint32_t> element_bounds{0};
+    for (int t = 1; t < threads; ++t) {
+      const double target = run * t;
+      while (b + 1 < blocks.size() && before + cost[b] <= target) before += cost[b++];
+      const auto& blk = blocks[b];
+      std::uint32_t node_cut = blk.first_node, element_cut = blk.first_tetrahedron;
+      if (cost[b] > 0.25 * run) {  // inside the block
+        const double f = std::clamp((target - before) / cost[b], 0.0, 1.0);
+        node_cut += static_cast<std::uint32_t>(std::lround(f * (blk.end_node - blk.first_node)));
+        element_cut += static_cast<std::uint32_t>(std::lround(f * (blk.end_tetrahedron - blk.first_tetrahedron)));
+      } else if (target - before > 0.5 * cost[b]) {  // after the block: the nearer of its two ends
+        node_cut = blk.end_node;
+        element_cut = blk.end_tetrahedron;
+      }
+      node_bounds.push_back(std::max(node_cut, node_bounds.back()));
+      element_bounds.push_back(std::max(element_cut, element_bounds.back()));
+    }
+    node_bounds.push_back(static_cast<std::uint32_t>(nodes));
+    element_bounds.push_back(static_cast<std::uint32_t>(elements));
+    for (std::uint32_t e : element_bounds) tile_bounds.push_back(static_cast<std::uint32_t>(element_tiles(e)));
+    std::size_t group = 0;
+    for_each_group([&](const auto& g) {
+      auto& bounds = contact_bounds[group++];
+      if (!std::is_sorted(g.node.begin(), g.node.end())) return;
+      for (std::uint32_t n : node_bounds)
+        bounds.push_back(static_cast<std::uint32_t>(std::lower_bound(g.node.begin(), g.node.end(), n) - g.node.begin()));
+    });
   }
 };
 

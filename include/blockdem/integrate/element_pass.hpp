@@ -18,6 +18,7 @@
 #include "blockdem/damping/concepts.hpp"
 #include "blockdem/geometry/tetrahedral_mesh.hpp"
 #include "blockdem/model/model.hpp"
+#include "blockdem/parallel/thread_ranges.hpp"
 
 namespace blockdem {
 
@@ -69,44 +70,47 @@ void element_pass_springs(State& state, model::Model& m, const Damping& damping,
   auto& te = m.deformable.tetrahedra;
   const Vec3* __restrict const velocity = m.deformable.nodes.velocity.data();
   const auto count = te.size();
-  const auto chunks = static_cast<std::ptrdiff_t>(state.element_viscous.size());
+  const std::size_t tiles = State::element_tiles(count);
   const auto* __restrict const moduli = material_moduli_of(state, m);
-#pragma omp parallel for schedule(static) if (count > 1024)
-  for (std::ptrdiff_t c = 0; c < chunks; ++c) {
-    const std::size_t first = static_cast<std::size_t>(c) * State::viscous_chunk;
-    const std::size_t last = std::min(first + State::viscous_chunk, count);
-    double viscous = 0.0;  // J, on this chunk's dashpots
-    for (std::size_t t = first; t < last; ++t) {
-      const auto& g = te.gradient[t];
-      const auto [exx, eyy, ezz, gxy, gyz, gzx] = strain_increment(velocity, te.node[t], g, increment_dt);
-      const double ev = exx + eyy + ezz;
-      const auto [bulk, shear] = moduli[te.material[t]];
-      auto& s = te.stress[t];
-      const double dp = bulk * ev;
-      const double dxx = exx - ev / 3.0, dyy = eyy - ev / 3.0, dzz = ezz - ev / 3.0;
-      s[0] += dp + 2.0 * shear * dxx;
-      s[1] += dp + 2.0 * shear * dyy;
-      s[2] += dp + 2.0 * shear * dzz;
-      s[3] += shear * gxy;
-      s[4] += shear * gyz;
-      s[5] += shear * gzx;
-      std::array<double, 6> total = s;
-      double dissipated = 0.0;
-      if constexpr (damping::PerSpringDamping<Damping>) {
-        auto& st = state.element_state[t];
-        const double p = damping.spring_stress(st[0], bulk, ev, increment_dt, true, dissipated);
-        total[0] += p + damping.spring_stress(st[1], 2.0 * shear, dxx, increment_dt, true, dissipated);
-        total[1] += p + damping.spring_stress(st[2], 2.0 * shear, dyy, increment_dt, true, dissipated);
-        total[2] += p + damping.spring_stress(st[3], 2.0 * shear, dzz, increment_dt, true, dissipated);
-        total[3] += damping.spring_stress(st[4], shear, gxy, increment_dt, true, dissipated);
-        total[4] += damping.spring_stress(st[5], shear, gyz, increment_dt, true, dissipated);
-        total[5] += damping.spring_stress(st[6], shear, gzx, increment_dt, true, dissipated);
+#pragma omp parallel if (count > 1024)
+  {
+    const auto [first_tile, end_tile] = parallel::my_range(state.tile_bounds, tiles);
+    for (std::size_t tile = first_tile; tile < end_tile; ++tile) {
+      const std::size_t first = tile * State::element_tile;
+      const std::size_t last = std::min(first + State::element_tile, count);
+      double viscous = 0.0;  // J, on this tile's dashpots
+      for (std::size_t t = first; t < last; ++t) {
+        const auto& g = te.gradient[t];
+        const auto [exx, eyy, ezz, gxy, gyz, gzx] = strain_increment(velocity, te.node[t], g, increment_dt);
+        const double ev = exx + eyy + ezz;
+        const auto [bulk, shear] = moduli[te.material[t]];
+        auto& s = te.stress[t];
+        const double dp = bulk * ev;
+        const double dxx = exx - ev / 3.0, dyy = eyy - ev / 3.0, dzz = ezz - ev / 3.0;
+        s[0] += dp + 2.0 * shear * dxx;
+        s[1] += dp + 2.0 * shear * dyy;
+        s[2] += dp + 2.0 * shear * dzz;
+        s[3] += shear * gxy;
+        s[4] += shear * gyz;
+        s[5] += shear * gzx;
+        std::array<double, 6> total = s;
+        double dissipated = 0.0;
+        if constexpr (damping::PerSpringDamping<Damping>) {
+          auto& st = state.element_state[t];
+          const double p = damping.spring_stress(st[0], bulk, ev, increment_dt, true, dissipated);
+          total[0] += p + damping.spring_stress(st[1], 2.0 * shear, dxx, increment_dt, true, dissipated);
+          total[1] += p + damping.spring_stress(st[2], 2.0 * shear, dyy, increment_dt, true, dissipated);
+          total[2] += p + damping.spring_stress(st[3], 2.0 * shear, dzz, increment_dt, true, dissipated);
+          total[3] += damping.spring_stress(st[4], shear, gxy, increment_dt, true, dissipated);
+          total[4] += damping.spring_stress(st[5], shear, gyz, increment_dt, true, dissipated);
+          total[5] += damping.spring_stress(st[6], shear, gzx, increment_dt, true, dissipated);
+        }
+        const double v = te.volume[t];
+        element_forces(v, total, g, state.element_force[t]);
+        viscous += v * dissipated;
       }
-      const double v = te.volume[t];
-      element_forces(v, total, g, state.element_force[t]);
-      viscous += v * dissipated;
+      state.element_viscous[tile] += viscous;
     }
-    state.element_viscous[static_cast<std::size_t>(c)] += viscous;
   }
 }
 
@@ -120,22 +124,22 @@ void element_pass_tiles(State& state, model::Model& m, const Damping& damping, d
   auto& te = m.deformable.tetrahedra;
   const Vec3* __restrict const velocity = m.deformable.nodes.velocity.data();
   const auto count = te.size();
-  const auto chunks = static_cast<std::ptrdiff_t>(state.element_viscous.size());
+  const std::size_t tiles = State::element_tiles(count);
   const auto* __restrict const moduli = material_moduli_of(state, m);
-#pragma omp parallel for schedule(static) if (count > 1024)
-  for (std::ptrdiff_t c = 0; c < chunks; ++c) {
-    const std::size_t first = static_cast<std::size_t>(c) * State::viscous_chunk;
-    const std::size_t last = std::min(first + State::viscous_chunk, count);
+#pragma omp parallel if (count > 1024)
+  {
+    const auto [first_tile, end_tile] = parallel::my_range(state.tile_bounds, tiles);
     alignas(64) TileLanes elastic, strain, branch;  // Pa, -, Pa: per component and element of the tile
     alignas(64) std::array<double, lanes> work;  // J/m^3
-    double viscous = 0.0;  // J, on this chunk's branches
-    for (std::size_t begin = first; begin < last; begin += lanes) {
-      const std::size_t n = std::min(lanes, last - begin);
+    for (std::size_t tile = first_tile; tile < end_tile; ++tile) {
+      const std::size_t begin = tile * lanes;
+      const std::size_t n = std::min(lanes, count - begin);
+      double viscous = 0.0;  // J, on this tile's branches
       // The next tile's branch stresses are fetched while this tile's increments are computed: the branch update
       // reads and writes a whole tile in a burst (4.6 kB for Maxwell<3>), faster than the hardware prefetcher
       // brings it in, and stalled on its loads.
-      const std::size_t next = begin / lanes + 1;
-      const char* const ahead = next < state.element_state.size() ? reinterpret_cast<const char*>(&state.element_state[next]) : nullptr;
+      const std::size_t next = tile + 1;
+      const char* const ahead = next < end_tile ? reinterpret_cast<const char*>(&state.element_state[next]) : nullptr;
       constexpr std::size_t ahead_step = (sizeof(typename State::ElementState) + lanes - 1) / lanes;  // bytes per element, <= 3 lines
       static_assert(ahead_step <= 192, "three cache lines per element");
       for (std::size_t l = 0; l < n; ++l) {
@@ -159,7 +163,7 @@ void element_pass_tiles(State& state, model::Model& m, const Damping& damping, d
       }
       for (std::size_t k = 0; k < 6; ++k)  // a last, partial tile: no increment on the lanes past the last element
         for (std::size_t l = n; l < lanes; ++l) elastic[k][l] = strain[k][l] = 0.0;
-      damping.element_stress_tile(state.element_state[begin / lanes], elastic, strain, increment_dt, branch, work);
+      damping.element_stress_tile(state.element_state[tile], elastic, strain, increment_dt, branch, work);
       for (std::size_t l = 0; l < n; ++l) {
         const std::size_t t = begin + l;
         const auto& s = te.stress[t];
@@ -169,8 +173,8 @@ void element_pass_tiles(State& state, model::Model& m, const Damping& damping, d
         element_forces(v, total, te.gradient[t], state.element_force[t]);
         viscous += v * work[l];
       }
+      state.element_viscous[tile] += viscous;
     }
-    state.element_viscous[static_cast<std::size_t>(c)] += viscous;
   }
 }
 

@@ -83,6 +83,7 @@ class NodeContactAssignment {
     }
     state.retired_slip += old_slip - carried_slip;
     state.retired_viscous += old_viscous - carried_viscous;
+    state.for_each_group([](auto& g) { g.sort_by_node(); });
     state.build_contact_lists(m);
     state.detected_node_position = m.deformable.nodes.position;
     for (auto& p : previous_contacts) p.clear();

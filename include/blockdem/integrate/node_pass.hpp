@@ -17,11 +17,12 @@
 #include "blockdem/damping/local.hpp"
 #include "blockdem/integrate/local_split.hpp"
 #include "blockdem/model/model.hpp"
+#include "blockdem/parallel/thread_ranges.hpp"
 
 namespace blockdem {
 
-/// Node contact points per tile of node_contact_pass: fixed, so that the tiles do not depend on the number of threads
-/// (nothing is summed across a tile: any size gives the same results). A tile's frames take 4.9 kB.
+/// Node contact points per tile of node_contact_pass (a thread's last tile may be shorter; nothing is summed across
+/// points, so any tiling gives the same results). A tile's frames take 4.9 kB.
 inline constexpr std::size_t node_contact_tile = 32;
 
 /// The node contact loop of one group. inverse_omega_squared: as for contact_pass (the laws' closure impulse).
@@ -31,9 +32,10 @@ inline constexpr std::size_t node_contact_tile = 32;
 /// chain of loads, roots and divisions before the law could start (45 ns per CP with no damping, one thread); the
 /// short first loop lets the chains of consecutive CPs overlap. No viscous stress, viscous work or slip work is
 /// computed or stored for a policy or law that has none. Per CP the same operations in the same order as one loop.
+/// The threads take the points by the ranges `bounds` (parallel/thread_ranges.hpp; empty: even splits).
 template <class G, class Damping>
 void node_contact_pass(G& g, const model::Model& m, const Damping& damping, double increment_dt,
-                       double inverse_omega_squared) {
+                       double inverse_omega_squared, const parallel::Bounds& bounds = {}) {
   using L = typename G::LawType;
   constexpr bool viscous_here = damping::PerSpringDamping<Damping>;
   constexpr bool rigid_face = !G::FaceKinematics::deformable;
@@ -53,66 +55,67 @@ void node_contact_pass(G& g, const model::Model& m, const Damping& damping, doub
   double* __restrict const viscous_dissipation = g.viscous_dissipation.data();
   const contact::Step step{increment_dt, inverse_omega_squared};
   const std::size_t count = g.size();
-  const auto tiles = static_cast<std::ptrdiff_t>((count + tile - 1) / tile);
-#pragma omp parallel for schedule(static) if (count > 256)
-  for (std::ptrdiff_t tt = 0; tt < tiles; ++tt) {
-    const std::size_t first = static_cast<std::size_t>(tt) * tile;
-    const std::size_t used = std::min(tile, count - first);
-    struct Frame {
-      Vec3 n, t1, t2, arm;  // arm: from a rigid face block's centroid
-      double du_n, du_1, du_2;
-    };
-    std::array<Frame, tile> frames;
-    for (std::size_t l = 0; l < used; ++l) {
-      const std::size_t k = first + l;
-      Frame& fr = frames[l];
-      Vec3 v_face;
-      if constexpr (!rigid_face) {
-        const auto& tri = g.triangle[k];
-        const auto& w = g.weight[k];
-        const Vec3 e1 = x[tri[1]] - x[tri[0]];
-        fr.n = -e1.cross(x[tri[2]] - x[tri[0]]).normalized();
-        fr.t1 = e1.normalized();
-        v_face = w[0] * velocity[tri[0]] + w[1] * velocity[tri[1]] + w[2] * velocity[tri[2]];
-      } else {
-        const std::uint32_t fb = g.face_block[k];
-        const Mat3& r = b.rotation[fb];
-        fr.n = rotate(r, g.normal_local[k]);
-        fr.t1 = rotate(r, g.tangent_local[k]);
-        fr.arm = rotate(r, g.point_local[k]);
-        v_face = b.velocity[fb] + b.angular_velocity[fb].cross(fr.arm);
+#pragma omp parallel if (count > 256)
+  {
+    const auto [first_point, end_point] = parallel::my_range(bounds, count);
+    for (std::size_t first = first_point; first < end_point; first += tile) {
+      const std::size_t used = std::min(tile, end_point - first);
+      struct Frame {
+        Vec3 n, t1, t2, arm;  // arm: from a rigid face block's centroid
+        double du_n, du_1, du_2;
+      };
+      std::array<Frame, tile> frames;
+      for (std::size_t l = 0; l < used; ++l) {
+        const std::size_t k = first + l;
+        Frame& fr = frames[l];
+        Vec3 v_face;
+        if constexpr (!rigid_face) {
+          const auto& tri = g.triangle[k];
+          const auto& w = g.weight[k];
+          const Vec3 e1 = x[tri[1]] - x[tri[0]];
+          fr.n = -e1.cross(x[tri[2]] - x[tri[0]]).normalized();
+          fr.t1 = e1.normalized();
+          v_face = w[0] * velocity[tri[0]] + w[1] * velocity[tri[1]] + w[2] * velocity[tri[2]];
+        } else {
+          const std::uint32_t fb = g.face_block[k];
+          const Mat3& r = b.rotation[fb];
+          fr.n = rotate(r, g.normal_local[k]);
+          fr.t1 = rotate(r, g.tangent_local[k]);
+          fr.arm = rotate(r, g.point_local[k]);
+          v_face = b.velocity[fb] + b.angular_velocity[fb].cross(fr.arm);
+        }
+        fr.t2 = fr.n.cross(fr.t1);
+        const Vec3 du = increment_dt * (v_face - velocity[node_of[k]]);
+        fr.du_n = du.dot(fr.n);
+        fr.du_1 = du.dot(fr.t1);
+        fr.du_2 = du.dot(fr.t2);
       }
-      fr.t2 = fr.n.cross(fr.t1);
-      const Vec3 du = increment_dt * (v_face - velocity[node_of[k]]);
-      fr.du_n = du.dot(fr.n);
-      fr.du_1 = du.dot(fr.t1);
-      fr.du_2 = du.dot(fr.t2);
-    }
-    for (std::size_t l = 0; l < used; ++l) {
-      const std::size_t k = first + l;
-      const Frame& fr = frames[l];
-      const double du_n = fr.du_n;
-      const contact::Shear du_s{fr.du_1, fr.du_2};
-      const auto& p = properties[property[k]];
-      const contact::Response r = L::update(p, history[k], du_n, du_s, step);
-      double sn = r.normal_stress, s1 = r.shear_stress[0], s2 = r.shear_stress[1];
-      const double area = area_of[k];
-      if constexpr (viscous_here) {
-        const double kn = L::normal_stiffness(p), ks = L::shear_stiffness(p);
-        const bool active = r.damping_active;  // L::damping_active(p, history[k])
-        double dissipated = 0.0;
-        // One spring after another: the three at once (spring_stresses, as the rigid pass) was slower here.
-        auto& spring = spring_state[k];
-        sn += damping.spring_stress(spring[0], kn, -du_n, increment_dt, active, dissipated);
-        s1 += damping.spring_stress(spring[1], ks, -du_s[0], increment_dt, active, dissipated);
-        s2 += damping.spring_stress(spring[2], ks, -du_s[1], increment_dt, active, dissipated);
-        viscous_dissipation[k] += area * dissipated;
+      for (std::size_t l = 0; l < used; ++l) {
+        const std::size_t k = first + l;
+        const Frame& fr = frames[l];
+        const double du_n = fr.du_n;
+        const contact::Shear du_s{fr.du_1, fr.du_2};
+        const auto& p = properties[property[k]];
+        const contact::Response r = L::update(p, history[k], du_n, du_s, step);
+        double sn = r.normal_stress, s1 = r.shear_stress[0], s2 = r.shear_stress[1];
+        const double area = area_of[k];
+        if constexpr (viscous_here) {
+          const double kn = L::normal_stiffness(p), ks = L::shear_stiffness(p);
+          const bool active = r.damping_active;  // L::damping_active(p, history[k])
+          double dissipated = 0.0;
+          // One spring after another: the three at once (spring_stresses, as the rigid pass) was slower here.
+          auto& spring = spring_state[k];
+          sn += damping.spring_stress(spring[0], kn, -du_n, increment_dt, active, dissipated);
+          s1 += damping.spring_stress(spring[1], ks, -du_s[0], increment_dt, active, dissipated);
+          s2 += damping.spring_stress(spring[2], ks, -du_s[1], increment_dt, active, dissipated);
+          viscous_dissipation[k] += area * dissipated;
+        }
+        traction[k] = {sn, s1, s2};
+        const Vec3 f = area * (sn * fr.n + s1 * fr.t1 + s2 * fr.t2);
+        force[k] = f;
+        if constexpr (rigid_face) g.moment[k] = fr.arm.cross(f);
+        if constexpr (L::dissipates) slip_dissipation[k] += area * r.dissipated;
       }
-      traction[k] = {sn, s1, s2};
-      const Vec3 f = area * (sn * fr.n + s1 * fr.t1 + s2 * fr.t2);
-      force[k] = f;
-      if constexpr (rigid_face) g.moment[k] = fr.arm.cross(f);
-      if constexpr (L::dissipates) slip_dissipation[k] += area * r.dissipated;
     }
   }
 }
@@ -122,7 +125,10 @@ void node_contact_pass(G& g, const model::Model& m, const Damping& damping, doub
 template <class State, class Damping>
 void node_contact_passes(State& state, const model::Model& m, const Damping& damping, double increment_dt,
                          double inverse_omega_squared) {
-  state.for_each_group([&](auto& g) { node_contact_pass(g, m, damping, increment_dt, inverse_omega_squared); });
+  std::size_t group = 0;
+  state.for_each_group([&](auto& g) {
+    node_contact_pass(g, m, damping, increment_dt, inverse_omega_squared, state.contact_bounds[group++]);
+  });
 }
 
 /// Trusses: axial force pretension + EA (L - L0) / L0 along the current axis.
@@ -217,7 +223,7 @@ bool node_pass(State& state, model::Model& m, const Damping& damping, double dt,
                double redetection, const damping::FrameVelocity& frame = {}) {
   auto& nd = m.deformable.nodes;
   const Vec3 gravity = m.gravity;
-  const auto count = static_cast<std::ptrdiff_t>(nd.size());
+  const std::size_t count = nd.size();
   bool moved = false;
   // The node contact forces of every group, in the order of the groups (node entries name the group).
   std::array<const Vec3*, State::group_count> group_force{};
@@ -229,53 +235,55 @@ bool node_pass(State& state, model::Model& m, const Damping& damping, double dt,
   // node): the inertia force m a_frame of the moving frame, and the frame's work (m dv - F dt) . v_frame.
   [[maybe_unused]] const Vec3 frame_acceleration = (frame.after - frame.before) / dt;
   [[maybe_unused]] const Vec3 frame_middle = 0.5 * (frame.before + frame.after);
-#pragma omp parallel for schedule(static) if (count > 1024) reduction(|| : moved)
-  for (std::ptrdiff_t ii = 0; ii < count; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    Vec3 force = Vec3::Zero();
-    for (std::uint32_t e = state.element_first[i]; e < state.element_first[i + 1]; ++e) {
-      const std::uint32_t code = state.element_entry[e];
-      force += state.element_force[code >> 2][code & 3u];
-    }
-    for (std::uint32_t e = state.node_first[i]; e < state.node_first[i + 1]; ++e) {
-      const std::uint32_t code = state.node_entry[e];
-      force += state.node_coefficient[e] * group_force[code >> State::node_entry_group_shift][code & State::node_entry_point_mask];
-    }
-    for (std::uint32_t e = state.truss_first[i]; e < state.truss_first[i + 1]; ++e) {
-      const std::uint32_t code = state.truss_entry[e];
-      force += (code & 1u) ? Vec3(-state.truss_force[code >> 1]) : state.truss_force[code >> 1];
-    }
-    force += nd.real_mass[i] * gravity;
-    nd.force[i] = force;
-    if constexpr (std::is_same_v<Damping, damping::Local>)
-      if (damping.split_rigid_motion) continue;  // updated block by block below, once every force is gathered
-    const damping::Inertia mass{nd.mass[i], state.node_inverse_mass[i]};
-    const Vec3 v_old = nd.velocity[i];
-    Vec3 v;
-    double dissipated = 0.0;
-    const std::uint8_t fixity = nd.fixity[i];
-    if constexpr (damping::damps_velocities<Damping>()) {
-      double by_frame = 0.0;
-      for (int c = 0; c < 3; ++c) {
-        if (fixity & (1u << c)) {
-          v[c] = 0.0;
-          continue;
-        }
-        v[c] = damping.velocity_update(v_old[c] - frame.before[c], force[c] - mass.value * frame_acceleration[c], mass, dt, dissipated) +
-               frame.after[c];
-        by_frame += (mass.value * (v[c] - v_old[c]) - force[c] * dt) * frame_middle[c];
+#pragma omp parallel if (count > 1024) reduction(|| : moved)
+  {
+    const auto [first_node, end_node] = parallel::my_range(state.node_bounds, count);
+    for (std::size_t i = first_node; i < end_node; ++i) {
+      Vec3 force = Vec3::Zero();
+      for (std::uint32_t e = state.element_first[i]; e < state.element_first[i + 1]; ++e) {
+        const std::uint32_t code = state.element_entry[e];
+        force += state.element_force[code >> 2][code & 3u];
       }
-      state.node_frame_work[i] += by_frame;
-    } else {
-      for (int c = 0; c < 3; ++c) v[c] = (fixity & (1u << c)) ? 0.0 : damping.velocity_update(v_old[c], force[c], mass, dt, dissipated);
-    }
-    nd.velocity[i] = v;
-    state.node_kinetic[i] = 0.5 * mass.value * v_old.dot(v);
-    state.node_viscous[i] += dissipated;
-    state.node_gravity_work[i] += nd.real_mass[i] * gravity.dot(v_old) * increment_dt;
-    if (move) {
-      nd.position[i] += dt * v;
-      moved = moved || (nd.position[i] - state.detected_node_position[i]).squaredNorm() > redetection * redetection;
+      for (std::uint32_t e = state.node_first[i]; e < state.node_first[i + 1]; ++e) {
+        const std::uint32_t code = state.node_entry[e];
+        force += state.node_coefficient[e] * group_force[code >> State::node_entry_group_shift][code & State::node_entry_point_mask];
+      }
+      for (std::uint32_t e = state.truss_first[i]; e < state.truss_first[i + 1]; ++e) {
+        const std::uint32_t code = state.truss_entry[e];
+        force += (code & 1u) ? Vec3(-state.truss_force[code >> 1]) : state.truss_force[code >> 1];
+      }
+      force += nd.real_mass[i] * gravity;
+      nd.force[i] = force;
+      if constexpr (std::is_same_v<Damping, damping::Local>)
+        if (damping.split_rigid_motion) continue;  // updated block by block below, once every force is gathered
+      const damping::Inertia mass{nd.mass[i], state.node_inverse_mass[i]};
+      const Vec3 v_old = nd.velocity[i];
+      Vec3 v;
+      double dissipated = 0.0;
+      const std::uint8_t fixity = nd.fixity[i];
+      if constexpr (damping::damps_velocities<Damping>()) {
+        double by_frame = 0.0;
+        for (int c = 0; c < 3; ++c) {
+          if (fixity & (1u << c)) {
+            v[c] = 0.0;
+            continue;
+          }
+          v[c] = damping.velocity_update(v_old[c] - frame.before[c], force[c] - mass.value * frame_acceleration[c], mass, dt, dissipated) +
+                 frame.after[c];
+          by_frame += (mass.value * (v[c] - v_old[c]) - force[c] * dt) * frame_middle[c];
+        }
+        state.node_frame_work[i] += by_frame;
+      } else {
+        for (int c = 0; c < 3; ++c) v[c] = (fixity & (1u << c)) ? 0.0 : damping.velocity_update(v_old[c], force[c], mass, dt, dissipated);
+      }
+      nd.velocity[i] = v;
+      state.node_kinetic[i] = 0.5 * mass.value * v_old.dot(v);
+      state.node_viscous[i] += dissipated;
+      state.node_gravity_work[i] += nd.real_mass[i] * gravity.dot(v_old) * increment_dt;
+      if (move) {
+        nd.position[i] += dt * v;
+        moved = moved || (nd.position[i] - state.detected_node_position[i]).squaredNorm() > redetection * redetection;
+      }
     }
   }
   if constexpr (std::is_same_v<Damping, damping::Local>)

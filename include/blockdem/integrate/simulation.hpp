@@ -350,6 +350,7 @@ class Simulation {
   void save_state(io::CheckpointWriter& out) const { visit_state(*this, out); }
   void load_state(io::CheckpointReader& in) {
     visit_state(*this, in);
+    if (mixed_) deformable_.build_thread_ranges(*model_);
     update_redetection_distances();
   }
 

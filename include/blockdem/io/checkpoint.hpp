@@ -322,8 +322,10 @@ inline constexpr std::string_view checkpoint_magic = "BLOCKDEM-CKPT";
 /// Raised whenever what a checkpoint holds changes (2: the energy that re-detection added, EnergyReport::contact_update;
 /// 3: the timestep hold, TimestepHold; 4: the laws' histories keep the closure impulse, contact/closure_impulse.hpp;
 /// 5: the elastic law's history keeps whether a point was ever bonded, and the simulation the timestep of its last
-/// move), so that a checkpoint of an earlier build is refused by name instead of being read out of step.
-inline constexpr std::uint32_t checkpoint_format_version = 6;
+/// move; 6: one gather list of node contact forces for all groups; 7: the work on the element branches summed per
+/// tile of 32 elements, DeformableState::element_viscous), so that a checkpoint of an earlier build is refused by
+/// name instead of being read out of step.
+inline constexpr std::uint32_t checkpoint_format_version = 7;
 
 /// What a checkpoint's header says.
 struct CheckpointHeader {
