@@ -8,6 +8,10 @@
 //   bench_vault_step [--kinematics rigid|mixed|deformable] [--settle-steps 2000] [--rounds 10] [--steps-per-turn 10]
 //                    [--threads 2] [--passes]
 //
+// With two threads or more, each round starts with the time a cache line takes between the two threads, and the
+// report gives the two-thread step apart for the rounds when the host ran the two vCPUs on cores with one shared
+// last-level cache and for those when it ran them on two.
+//
 // --passes adds, for the deformable part, the cost of each pass on its own (elements, node contacts, the node
 // update, the forces on rigid blocks; the rest of the step by difference), per item and per step, with the bytes
 // each pass moves and the flops it does per item, against this machine's bandwidth and peak measured here (a
@@ -17,6 +21,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -91,6 +96,43 @@ void report_paired(const std::string& what, const std::vector<double>& top, cons
   std::vector<double> r(top.size());
   for (std::size_t i = 0; i < r.size(); ++i) r[i] = top[i] / bottom[i];
   std::printf("  %-40s %.3f  %.3f  %.3f\n", what.c_str(), quantile(r, 0.25), quantile(r, 0.5), quantile(r, 0.75));
+}
+
+/// The time a cache line takes from one thread to the other and back (ns, half of a round trip of a counter two
+/// threads pass each other): about 25 ns when the host runs the two vCPUs on cores that share a last-level cache,
+/// about 180 ns when it runs them on two core complexes, as it does for tens of seconds at a time (docs/performance.md).
+double cache_trip_ns() {
+  std::atomic<long> turn{0};
+  constexpr long trips = 20000;
+  double ns = 0;
+  omp_set_num_threads(2);
+#pragma omp parallel
+  {
+    if (omp_get_num_threads() == 2) {
+      const bool first = omp_get_thread_num() == 0;
+      const auto start = clock_type::now();
+      for (long k = 0; k < trips; ++k) {
+        if (first) {
+          turn.store(2 * k + 1, std::memory_order_release);
+          while (turn.load(std::memory_order_acquire) != 2 * k + 2) {}
+        } else {
+          while (turn.load(std::memory_order_acquire) != 2 * k + 1) {}
+          turn.store(2 * k + 2, std::memory_order_release);
+        }
+      }
+      if (first) ns = 1e3 * microseconds(start, clock_type::now()) / (2.0 * trips);
+    }
+  }
+  return ns;
+}
+
+/// The median of the turns of `turns` whose round had split caches (or not).
+double median_where(const std::vector<double>& turns, const std::vector<bool>& split, bool which, int& count) {
+  std::vector<double> v;
+  for (std::size_t r = 0; r < turns.size() && r < split.size(); ++r)
+    if (split[r] == which) v.push_back(turns[r]);
+  count = static_cast<int>(v.size());
+  return quantile(v, 0.5);
 }
 
 /// A streaming triad a = b + s c over three arrays of `bytes` in all (GB/s, the best of a few sweeps), on `threads`.
@@ -265,7 +307,13 @@ int main(int argc, char** argv) {
               mass.simulation->contact_points(), settle_steps, 1e-6 * microseconds(start, clock_type::now()));
   std::printf("timestep: MassProportional %.4g s, Maxwell<3> %.4g s, None %.4g s\n", mass.simulation->timestep(),
               maxwell.simulation->timestep(), none.simulation->timestep());
+  std::vector<bool> split_caches;  // per round: the two vCPUs on two last-level caches (cache_trip_ns over 80 ns)
+  std::vector<double> trips;
   for (int r = 0; r < rounds; ++r) {
+    if (threads > 1) {
+      trips.push_back(cache_trip_ns());
+      split_caches.push_back(trips.back() > 80.0);
+    }
     mass.turn(steps, threads);
     maxwell.turn(steps, threads);
     none.turn(steps, threads);
@@ -282,6 +330,18 @@ int main(int argc, char** argv) {
     report_paired("Maxwell<3> / Mass, " + n + " threads", maxwell.threaded_turn_us, mass.threaded_turn_us);
     report_paired("speed-up of " + n + " threads, Mass", mass.turn_us, mass.threaded_turn_us);
     report_paired("speed-up of " + n + " threads, Maxwell<3>", maxwell.turn_us, maxwell.threaded_turn_us);
+    // The host's placement of the two vCPUs, measured before each round: the two-thread step on each.
+    std::printf("the two vCPUs, per round: one shared last-level cache (cache line trip %.0f ns at the median) or two (over 80 ns):\n",
+                quantile(trips, 0.5));
+    for (bool split : {false, true}) {
+      int count = 0;
+      const double mass_us = median_where(mass.threaded_turn_us, split_caches, split, count);
+      int maxwell_count = 0;
+      const double maxwell_us = median_where(maxwell.threaded_turn_us, split_caches, split, maxwell_count);
+      if (count > 0)
+        std::printf("  %-20s %3d rounds: %d threads, Mass %.0f us, Maxwell<3> %.0f us per step (medians of the turns)\n",
+                    split ? "two caches" : "one cache", count, threads, mass_us, maxwell_us);
+    }
   }
   if (with_passes && !m.deformable.empty()) {
     // About what one step of the deformable vault reads and writes with Maxwell<3> (elements 700 bytes, node contacts
