@@ -64,128 +64,135 @@ const std::array<double, 2>* material_moduli_of(State& state, const model::Model
   return state.material_moduli.data();
 }
 
-/// The element pass of the other policies: the seven strain components' springs per element (spring_stress).
+/// The element pass of the other policies over the tiles [first_tile, end_tile), on the calling thread: the seven
+/// strain components' springs per element (spring_stress). moduli: material_moduli_of.
 template <class State, class Damping>
-void element_pass_springs(State& state, model::Model& m, const Damping& damping, double increment_dt) {
+void element_springs_range(State& state, model::Model& m, const Damping& damping, double increment_dt,
+                           const std::array<double, 2>* __restrict moduli, std::size_t first_tile, std::size_t end_tile) {
   auto& te = m.deformable.tetrahedra;
   const Vec3* __restrict const velocity = m.deformable.nodes.velocity.data();
   const auto count = te.size();
-  const std::size_t tiles = State::element_tiles(count);
-  const auto* __restrict const moduli = material_moduli_of(state, m);
-#pragma omp parallel if (count > 1024)
-  {
-    const auto [first_tile, end_tile] = parallel::my_range(state.tile_bounds, tiles);
-    for (std::size_t tile = first_tile; tile < end_tile; ++tile) {
-      const std::size_t first = tile * State::element_tile;
-      const std::size_t last = std::min(first + State::element_tile, count);
-      double viscous = 0.0;  // J, on this tile's dashpots
-      for (std::size_t t = first; t < last; ++t) {
-        const auto& g = te.gradient[t];
-        const auto [exx, eyy, ezz, gxy, gyz, gzx] = strain_increment(velocity, te.node[t], g, increment_dt);
-        const double ev = exx + eyy + ezz;
-        const auto [bulk, shear] = moduli[te.material[t]];
-        auto& s = te.stress[t];
-        const double dp = bulk * ev;
-        const double dxx = exx - ev / 3.0, dyy = eyy - ev / 3.0, dzz = ezz - ev / 3.0;
-        s[0] += dp + 2.0 * shear * dxx;
-        s[1] += dp + 2.0 * shear * dyy;
-        s[2] += dp + 2.0 * shear * dzz;
-        s[3] += shear * gxy;
-        s[4] += shear * gyz;
-        s[5] += shear * gzx;
-        std::array<double, 6> total = s;
-        double dissipated = 0.0;
-        if constexpr (damping::PerSpringDamping<Damping>) {
-          auto& st = state.element_state[t];
-          const double p = damping.spring_stress(st[0], bulk, ev, increment_dt, true, dissipated);
-          total[0] += p + damping.spring_stress(st[1], 2.0 * shear, dxx, increment_dt, true, dissipated);
-          total[1] += p + damping.spring_stress(st[2], 2.0 * shear, dyy, increment_dt, true, dissipated);
-          total[2] += p + damping.spring_stress(st[3], 2.0 * shear, dzz, increment_dt, true, dissipated);
-          total[3] += damping.spring_stress(st[4], shear, gxy, increment_dt, true, dissipated);
-          total[4] += damping.spring_stress(st[5], shear, gyz, increment_dt, true, dissipated);
-          total[5] += damping.spring_stress(st[6], shear, gzx, increment_dt, true, dissipated);
-        }
-        const double v = te.volume[t];
-        element_forces(v, total, g, state.element_force[t]);
-        viscous += v * dissipated;
+  for (std::size_t tile = first_tile; tile < end_tile; ++tile) {
+    const std::size_t first = tile * State::element_tile;
+    const std::size_t last = std::min(first + State::element_tile, count);
+    double viscous = 0.0;  // J, on this tile's dashpots
+    for (std::size_t t = first; t < last; ++t) {
+      const auto& g = te.gradient[t];
+      const auto [exx, eyy, ezz, gxy, gyz, gzx] = strain_increment(velocity, te.node[t], g, increment_dt);
+      const double ev = exx + eyy + ezz;
+      const auto [bulk, shear] = moduli[te.material[t]];
+      auto& s = te.stress[t];
+      const double dp = bulk * ev;
+      const double dxx = exx - ev / 3.0, dyy = eyy - ev / 3.0, dzz = ezz - ev / 3.0;
+      s[0] += dp + 2.0 * shear * dxx;
+      s[1] += dp + 2.0 * shear * dyy;
+      s[2] += dp + 2.0 * shear * dzz;
+      s[3] += shear * gxy;
+      s[4] += shear * gyz;
+      s[5] += shear * gzx;
+      std::array<double, 6> total = s;
+      double dissipated = 0.0;
+      if constexpr (damping::PerSpringDamping<Damping>) {
+        auto& st = state.element_state[t];
+        const double p = damping.spring_stress(st[0], bulk, ev, increment_dt, true, dissipated);
+        total[0] += p + damping.spring_stress(st[1], 2.0 * shear, dxx, increment_dt, true, dissipated);
+        total[1] += p + damping.spring_stress(st[2], 2.0 * shear, dyy, increment_dt, true, dissipated);
+        total[2] += p + damping.spring_stress(st[3], 2.0 * shear, dzz, increment_dt, true, dissipated);
+        total[3] += damping.spring_stress(st[4], shear, gxy, increment_dt, true, dissipated);
+        total[4] += damping.spring_stress(st[5], shear, gyz, increment_dt, true, dissipated);
+        total[5] += damping.spring_stress(st[6], shear, gzx, increment_dt, true, dissipated);
       }
-      state.element_viscous[tile] += viscous;
+      const double v = te.volume[t];
+      element_forces(v, total, g, state.element_force[t]);
+      viscous += v * dissipated;
     }
+    state.element_viscous[tile] += viscous;
   }
 }
 
-/// The element pass of the tensor form, one tile of element_tile elements at a time: the increments of the tile's
+/// The element pass of the tensor form over the tiles [first_tile, end_tile), on the calling thread, one tile of
+/// element_tile elements at a time: the increments of the tile's
 /// elements (per element), the branch update (across the tile's elements, damping.element_stress_tile), then the
 /// forces (per element). Per element the same operations in the same order as element_stress.
 template <class State, class Damping>
-void element_pass_tiles(State& state, model::Model& m, const Damping& damping, double increment_dt) {
+void element_tiles_range(State& state, model::Model& m, const Damping& damping, double increment_dt,
+                         const std::array<double, 2>* __restrict moduli, std::size_t first_tile, std::size_t end_tile) {
   constexpr std::size_t lanes = State::element_tile;
   using TileLanes = typename Damping::template ElementLanes<lanes>;
   auto& te = m.deformable.tetrahedra;
   const Vec3* __restrict const velocity = m.deformable.nodes.velocity.data();
   const auto count = te.size();
-  const std::size_t tiles = State::element_tiles(count);
-  const auto* __restrict const moduli = material_moduli_of(state, m);
-#pragma omp parallel if (count > 1024)
-  {
-    const auto [first_tile, end_tile] = parallel::my_range(state.tile_bounds, tiles);
-    alignas(64) TileLanes elastic, strain, branch;  // Pa, -, Pa: per component and element of the tile
-    alignas(64) std::array<double, lanes> work;  // J/m^3
-    for (std::size_t tile = first_tile; tile < end_tile; ++tile) {
-      const std::size_t begin = tile * lanes;
-      const std::size_t n = std::min(lanes, count - begin);
-      double viscous = 0.0;  // J, on this tile's branches
-      // The next tile's branch stresses are fetched while this tile's increments are computed: the branch update
-      // reads and writes a whole tile in a burst (4.6 kB for Maxwell<3>), faster than the hardware prefetcher
-      // brings it in, and stalled on its loads.
-      const std::size_t next = tile + 1;
-      const char* const ahead = next < end_tile ? reinterpret_cast<const char*>(&state.element_state[next]) : nullptr;
-      constexpr std::size_t ahead_step = (sizeof(typename State::ElementState) + lanes - 1) / lanes;  // bytes per element, <= 3 lines
-      static_assert(ahead_step <= 192, "three cache lines per element");
-      for (std::size_t l = 0; l < n; ++l) {
-        const std::size_t t = begin + l;
-        if (ahead != nullptr)
-          for (std::size_t b = 0; b < ahead_step; b += 64) __builtin_prefetch(ahead + l * ahead_step + b, 1);
-        const auto [exx, eyy, ezz, gxy, gyz, gzx] = strain_increment(velocity, te.node[t], te.gradient[t], increment_dt);
-        const double ev = exx + eyy + ezz;
-        const auto [bulk, shear] = moduli[te.material[t]];
-        const double dp = bulk * ev;
-        const double dxx = exx - ev / 3.0, dyy = eyy - ev / 3.0, dzz = ezz - ev / 3.0;
-        const double d[6] = {dp + 2.0 * shear * dxx, dp + 2.0 * shear * dyy, dp + 2.0 * shear * dzz,
-                             shear * gxy, shear * gyz, shear * gzx};
-        const double e[6] = {exx, eyy, ezz, gxy, gyz, gzx};
-        auto& s = te.stress[t];
-        for (std::size_t k = 0; k < 6; ++k) {
-          s[k] += d[k];
-          elastic[k][l] = d[k];
-          strain[k][l] = e[k];
-        }
+  alignas(64) TileLanes elastic, strain, branch;  // Pa, -, Pa: per component and element of the tile
+  alignas(64) std::array<double, lanes> work;  // J/m^3
+  for (std::size_t tile = first_tile; tile < end_tile; ++tile) {
+    const std::size_t begin = tile * lanes;
+    const std::size_t n = std::min(lanes, count - begin);
+    double viscous = 0.0;  // J, on this tile's branches
+    // The next tile's branch stresses are fetched while this tile's increments are computed: the branch update
+    // reads and writes a whole tile in a burst (4.6 kB for Maxwell<3>), faster than the hardware prefetcher
+    // brings it in, and stalled on its loads.
+    const std::size_t next = tile + 1;
+    const char* const ahead = next < end_tile ? reinterpret_cast<const char*>(&state.element_state[next]) : nullptr;
+    constexpr std::size_t ahead_step = (sizeof(typename State::ElementState) + lanes - 1) / lanes;  // bytes per element, <= 3 lines
+    static_assert(ahead_step <= 192, "three cache lines per element");
+    for (std::size_t l = 0; l < n; ++l) {
+      const std::size_t t = begin + l;
+      if (ahead != nullptr)
+        for (std::size_t b = 0; b < ahead_step; b += 64) __builtin_prefetch(ahead + l * ahead_step + b, 1);
+      const auto [exx, eyy, ezz, gxy, gyz, gzx] = strain_increment(velocity, te.node[t], te.gradient[t], increment_dt);
+      const double ev = exx + eyy + ezz;
+      const auto [bulk, shear] = moduli[te.material[t]];
+      const double dp = bulk * ev;
+      const double dxx = exx - ev / 3.0, dyy = eyy - ev / 3.0, dzz = ezz - ev / 3.0;
+      const double d[6] = {dp + 2.0 * shear * dxx, dp + 2.0 * shear * dyy, dp + 2.0 * shear * dzz,
+                           shear * gxy, shear * gyz, shear * gzx};
+      const double e[6] = {exx, eyy, ezz, gxy, gyz, gzx};
+      auto& s = te.stress[t];
+      for (std::size_t k = 0; k < 6; ++k) {
+        s[k] += d[k];
+        elastic[k][l] = d[k];
+        strain[k][l] = e[k];
       }
-      for (std::size_t k = 0; k < 6; ++k)  // a last, partial tile: no increment on the lanes past the last element
-        for (std::size_t l = n; l < lanes; ++l) elastic[k][l] = strain[k][l] = 0.0;
-      damping.element_stress_tile(state.element_state[tile], elastic, strain, increment_dt, branch, work);
-      for (std::size_t l = 0; l < n; ++l) {
-        const std::size_t t = begin + l;
-        const auto& s = te.stress[t];
-        const std::array<double, 6> total{s[0] + branch[0][l], s[1] + branch[1][l], s[2] + branch[2][l],
-                                          s[3] + branch[3][l], s[4] + branch[4][l], s[5] + branch[5][l]};
-        const double v = te.volume[t];
-        element_forces(v, total, te.gradient[t], state.element_force[t]);
-        viscous += v * work[l];
-      }
-      state.element_viscous[tile] += viscous;
     }
+    for (std::size_t k = 0; k < 6; ++k)  // a last, partial tile: no increment on the lanes past the last element
+      for (std::size_t l = n; l < lanes; ++l) elastic[k][l] = strain[k][l] = 0.0;
+    damping.element_stress_tile(state.element_state[tile], elastic, strain, increment_dt, branch, work);
+    for (std::size_t l = 0; l < n; ++l) {
+      const std::size_t t = begin + l;
+      const auto& s = te.stress[t];
+      const std::array<double, 6> total{s[0] + branch[0][l], s[1] + branch[1][l], s[2] + branch[2][l],
+                                        s[3] + branch[3][l], s[4] + branch[4][l], s[5] + branch[5][l]};
+      const double v = te.volume[t];
+      element_forces(v, total, te.gradient[t], state.element_force[t]);
+      viscous += v * work[l];
+    }
+    state.element_viscous[tile] += viscous;
   }
 }
 
 }  // namespace detail
 
+/// The element tiles [first_tile, end_tile) on the calling thread (element_pass). moduli: material_moduli_of, taken
+/// outside the parallel region (it may allocate).
+template <class State, class Damping>
+void element_range(State& state, model::Model& m, const Damping& damping, double increment_dt,
+                   const std::array<double, 2>* moduli, std::size_t first_tile, std::size_t end_tile) {
+  if constexpr (State::tensor_form) detail::element_tiles_range(state, m, damping, increment_dt, moduli, first_tile, end_tile);
+  else detail::element_springs_range(state, m, damping, increment_dt, moduli, first_tile, end_tile);
+}
+
 /// Constant-strain tetrahedra of the deformable state: strain increment from v(n-1/2) over the last move,
-/// stress, damping, nodal forces (state.element_force) and the damping work (state.element_viscous).
+/// stress, damping, nodal forces (state.element_force) and the damping work (state.element_viscous), over the threads
+/// by state.tile_bounds (parallel/thread_ranges.hpp).
 template <class State, class Damping>
 void element_pass(State& state, model::Model& m, const Damping& damping, double increment_dt) {
-  if constexpr (State::tensor_form) detail::element_pass_tiles(state, m, damping, increment_dt);
-  else detail::element_pass_springs(state, m, damping, increment_dt);
+  const auto* moduli = detail::material_moduli_of(state, m);
+  const std::size_t count = m.deformable.tetrahedra.size();
+#pragma omp parallel if (count > 1024)
+  {
+    const auto [first_tile, end_tile] = parallel::my_range(state.tile_bounds, State::element_tiles(count));
+    element_range(state, m, damping, increment_dt, moduli, first_tile, end_tile);
+  }
 }
 
 }  // namespace blockdem

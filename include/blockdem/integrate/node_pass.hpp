@@ -25,17 +25,17 @@ namespace blockdem {
 /// points, so any tiling gives the same results). A tile's frames take 4.9 kB.
 inline constexpr std::size_t node_contact_tile = 32;
 
-/// The node contact loop of one group. inverse_omega_squared: as for contact_pass (the laws' closure impulse).
+/// The node contact loop of one group over its points [first_point, end_point), on the calling thread.
+/// inverse_omega_squared: as for contact_pass (the laws' closure impulse).
 /// A tile of node_contact_tile CPs at a time, in two loops: first the frame of every CP of the tile and its
 /// displacement increment (gathered node velocities and positions, a cross product, two square roots and their
 /// divisions), then the law, the damping and the force, one CP after another. In one loop each CP waited on its own
 /// chain of loads, roots and divisions before the law could start (45 ns per CP with no damping, one thread); the
 /// short first loop lets the chains of consecutive CPs overlap. No viscous stress, viscous work or slip work is
 /// computed or stored for a policy or law that has none. Per CP the same operations in the same order as one loop.
-/// The threads take the points by the ranges `bounds` (parallel/thread_ranges.hpp; empty: even splits).
 template <class G, class Damping>
-void node_contact_pass(G& g, const model::Model& m, const Damping& damping, double increment_dt,
-                       double inverse_omega_squared, const parallel::Bounds& bounds = {}) {
+void node_contact_range(G& g, const model::Model& m, const Damping& damping, double increment_dt,
+                        double inverse_omega_squared, std::size_t first_point, std::size_t end_point) {
   using L = typename G::LawType;
   constexpr bool viscous_here = damping::PerSpringDamping<Damping>;
   constexpr bool rigid_face = !G::FaceKinematics::deformable;
@@ -54,69 +54,76 @@ void node_contact_pass(G& g, const model::Model& m, const Damping& damping, doub
   double* __restrict const slip_dissipation = g.slip_dissipation.data();
   double* __restrict const viscous_dissipation = g.viscous_dissipation.data();
   const contact::Step step{increment_dt, inverse_omega_squared};
-  const std::size_t count = g.size();
-#pragma omp parallel if (count > 256)
-  {
-    const auto [first_point, end_point] = parallel::my_range(bounds, count);
-    for (std::size_t first = first_point; first < end_point; first += tile) {
-      const std::size_t used = std::min(tile, end_point - first);
-      struct Frame {
-        Vec3 n, t1, t2, arm;  // arm: from a rigid face block's centroid
-        double du_n, du_1, du_2;
-      };
-      std::array<Frame, tile> frames;
-      for (std::size_t l = 0; l < used; ++l) {
-        const std::size_t k = first + l;
-        Frame& fr = frames[l];
-        Vec3 v_face;
-        if constexpr (!rigid_face) {
-          const auto& tri = g.triangle[k];
-          const auto& w = g.weight[k];
-          const Vec3 e1 = x[tri[1]] - x[tri[0]];
-          fr.n = -e1.cross(x[tri[2]] - x[tri[0]]).normalized();
-          fr.t1 = e1.normalized();
-          v_face = w[0] * velocity[tri[0]] + w[1] * velocity[tri[1]] + w[2] * velocity[tri[2]];
-        } else {
-          const std::uint32_t fb = g.face_block[k];
-          const Mat3& r = b.rotation[fb];
-          fr.n = rotate(r, g.normal_local[k]);
-          fr.t1 = rotate(r, g.tangent_local[k]);
-          fr.arm = rotate(r, g.point_local[k]);
-          v_face = b.velocity[fb] + b.angular_velocity[fb].cross(fr.arm);
-        }
-        fr.t2 = fr.n.cross(fr.t1);
-        const Vec3 du = increment_dt * (v_face - velocity[node_of[k]]);
-        fr.du_n = du.dot(fr.n);
-        fr.du_1 = du.dot(fr.t1);
-        fr.du_2 = du.dot(fr.t2);
+  for (std::size_t first = first_point; first < end_point; first += tile) {
+    const std::size_t used = std::min(tile, end_point - first);
+    struct Frame {
+      Vec3 n, t1, t2, arm;  // arm: from a rigid face block's centroid
+      double du_n, du_1, du_2;
+    };
+    std::array<Frame, tile> frames;
+    for (std::size_t l = 0; l < used; ++l) {
+      const std::size_t k = first + l;
+      Frame& fr = frames[l];
+      Vec3 v_face;
+      if constexpr (!rigid_face) {
+        const auto& tri = g.triangle[k];
+        const auto& w = g.weight[k];
+        const Vec3 e1 = x[tri[1]] - x[tri[0]];
+        fr.n = -e1.cross(x[tri[2]] - x[tri[0]]).normalized();
+        fr.t1 = e1.normalized();
+        v_face = w[0] * velocity[tri[0]] + w[1] * velocity[tri[1]] + w[2] * velocity[tri[2]];
+      } else {
+        const std::uint32_t fb = g.face_block[k];
+        const Mat3& r = b.rotation[fb];
+        fr.n = rotate(r, g.normal_local[k]);
+        fr.t1 = rotate(r, g.tangent_local[k]);
+        fr.arm = rotate(r, g.point_local[k]);
+        v_face = b.velocity[fb] + b.angular_velocity[fb].cross(fr.arm);
       }
-      for (std::size_t l = 0; l < used; ++l) {
-        const std::size_t k = first + l;
-        const Frame& fr = frames[l];
-        const double du_n = fr.du_n;
-        const contact::Shear du_s{fr.du_1, fr.du_2};
-        const auto& p = properties[property[k]];
-        const contact::Response r = L::update(p, history[k], du_n, du_s, step);
-        double sn = r.normal_stress, s1 = r.shear_stress[0], s2 = r.shear_stress[1];
-        const double area = area_of[k];
-        if constexpr (viscous_here) {
-          const double kn = L::normal_stiffness(p), ks = L::shear_stiffness(p);
-          const bool active = r.damping_active;  // L::damping_active(p, history[k])
-          double dissipated = 0.0;
-          // One spring after another: the three at once (spring_stresses, as the rigid pass) was slower here.
-          auto& spring = spring_state[k];
-          sn += damping.spring_stress(spring[0], kn, -du_n, increment_dt, active, dissipated);
-          s1 += damping.spring_stress(spring[1], ks, -du_s[0], increment_dt, active, dissipated);
-          s2 += damping.spring_stress(spring[2], ks, -du_s[1], increment_dt, active, dissipated);
-          viscous_dissipation[k] += area * dissipated;
-        }
-        traction[k] = {sn, s1, s2};
-        const Vec3 f = area * (sn * fr.n + s1 * fr.t1 + s2 * fr.t2);
-        force[k] = f;
-        if constexpr (rigid_face) g.moment[k] = fr.arm.cross(f);
-        if constexpr (L::dissipates) slip_dissipation[k] += area * r.dissipated;
-      }
+      fr.t2 = fr.n.cross(fr.t1);
+      const Vec3 du = increment_dt * (v_face - velocity[node_of[k]]);
+      fr.du_n = du.dot(fr.n);
+      fr.du_1 = du.dot(fr.t1);
+      fr.du_2 = du.dot(fr.t2);
     }
+    for (std::size_t l = 0; l < used; ++l) {
+      const std::size_t k = first + l;
+      const Frame& fr = frames[l];
+      const double du_n = fr.du_n;
+      const contact::Shear du_s{fr.du_1, fr.du_2};
+      const auto& p = properties[property[k]];
+      const contact::Response r = L::update(p, history[k], du_n, du_s, step);
+      double sn = r.normal_stress, s1 = r.shear_stress[0], s2 = r.shear_stress[1];
+      const double area = area_of[k];
+      if constexpr (viscous_here) {
+        const double kn = L::normal_stiffness(p), ks = L::shear_stiffness(p);
+        const bool active = r.damping_active;  // L::damping_active(p, history[k])
+        double dissipated = 0.0;
+        // One spring after another: the three at once (spring_stresses, as the rigid pass) was slower here.
+        auto& spring = spring_state[k];
+        sn += damping.spring_stress(spring[0], kn, -du_n, increment_dt, active, dissipated);
+        s1 += damping.spring_stress(spring[1], ks, -du_s[0], increment_dt, active, dissipated);
+        s2 += damping.spring_stress(spring[2], ks, -du_s[1], increment_dt, active, dissipated);
+        viscous_dissipation[k] += area * dissipated;
+      }
+      traction[k] = {sn, s1, s2};
+      const Vec3 f = area * (sn * fr.n + s1 * fr.t1 + s2 * fr.t2);
+      force[k] = f;
+      if constexpr (rigid_face) g.moment[k] = fr.arm.cross(f);
+    if constexpr (L::dissipates) slip_dissipation[k] += area * r.dissipated;
+    }
+  }
+}
+
+/// The node contact loop of one group, over the threads by the ranges `bounds` (parallel/thread_ranges.hpp; empty:
+/// even splits).
+template <class G, class Damping>
+void node_contact_pass(G& g, const model::Model& m, const Damping& damping, double increment_dt,
+                       double inverse_omega_squared, const parallel::Bounds& bounds = {}) {
+#pragma omp parallel if (g.size() > 256)
+  {
+    const auto [first_point, end_point] = parallel::my_range(bounds, g.size());
+    node_contact_range(g, m, damping, increment_dt, inverse_omega_squared, first_point, end_point);
   }
 }
 

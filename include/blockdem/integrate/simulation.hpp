@@ -34,6 +34,7 @@
 #include "blockdem/integrate/contact_group.hpp"
 #include "blockdem/integrate/contact_pass.hpp"
 #include "blockdem/integrate/contact_view.hpp"
+#include "blockdem/integrate/deformable_forces.hpp"
 #include "blockdem/integrate/deformable_state.hpp"
 #include "blockdem/integrate/element_pass.hpp"
 #include "blockdem/integrate/energy.hpp"
@@ -409,8 +410,7 @@ class Simulation {
 
   /// Node contacts, elements, trusses, then what they apply to rigid blocks.
   void mixed_forces(double increment_dt) {
-    node_contact_passes(deformable_, *model_, damping_, increment_dt, closure_inverse_omega_squared());
-    element_pass(deformable_, *model_, damping_, increment_dt);
+    deformable_forces(deformable_, *model_, damping_, increment_dt, closure_inverse_omega_squared());
     truss_pass(deformable_, *model_);
     gather_rigid(deformable_, *model_, increment_dt);
   }
