@@ -33,21 +33,28 @@ std::size_t differences_between_one_and_two_threads(Run run) {
   return different;
 }
 
-/// One OpenMP thread for a test case (ctest runs two tests at once on two cores; threads that wait on a busy core
-/// slow a run many times over); the number of processors again afterwards.
-struct OneThread {
-  OneThread() {
+/// `n` OpenMP threads while it lives, the number of processors again afterwards.
+struct ScopedThreads {
+  explicit ScopedThreads(int n) {
 #ifdef _OPENMP
-    omp_set_num_threads(1);
+    omp_set_num_threads(n);
+#else
+    (void)n;
 #endif
   }
-  ~OneThread() {
+  ~ScopedThreads() {
 #ifdef _OPENMP
     omp_set_num_threads(omp_get_num_procs());
 #endif
   }
-  OneThread(const OneThread&) = delete;
-  OneThread& operator=(const OneThread&) = delete;
+  ScopedThreads(const ScopedThreads&) = delete;
+  ScopedThreads& operator=(const ScopedThreads&) = delete;
+};
+
+/// One OpenMP thread for a test case (ctest runs two tests at once on two cores; threads that wait on a busy core
+/// slow a run many times over).
+struct OneThread : ScopedThreads {
+  OneThread() : ScopedThreads(1) {}
 };
 
 }  // namespace blockdem::test

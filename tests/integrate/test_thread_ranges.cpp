@@ -14,10 +14,7 @@
 #include "blockdem/geometry/generators.hpp"
 #include "blockdem/integrate/simulation.hpp"
 #include "blockdem/parallel/thread_ranges.hpp"
-
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include "../threads.hpp"
 
 using namespace blockdem;
 
@@ -25,22 +22,6 @@ using namespace blockdem;
 namespace test_thread_ranges {
 
 namespace {
-
-/// Two OpenMP threads for the ranges made while it lives; the number of processors again afterwards.
-struct TwoThreads {
-  TwoThreads() {
-#ifdef _OPENMP
-    omp_set_num_threads(2);
-#endif
-  }
-  ~TwoThreads() {
-#ifdef _OPENMP
-    omp_set_num_threads(omp_get_num_procs());
-#endif
-  }
-  TwoThreads(const TwoThreads&) = delete;
-  TwoThreads& operator=(const TwoThreads&) = delete;
-};
 
 using Sim = Simulation<damping::MassProportional, contact::MohrCoulomb>;
 using State = DeformableState<damping::MassProportional, contact::MohrCoulomb>;
@@ -64,7 +45,7 @@ TEST_CASE("thread ranges: the bounds made for a team of that size, else an even 
 }
 
 TEST_CASE("thread ranges: a wall of deformable blocks is cut between two blocks, each contact point with its node") {
-  TwoThreads two;
+  const test::ScopedThreads two(2);
   if (parallel::available_threads() < 2) return;  // built without OpenMP: no ranges to check
   model::Model m;
   for (const auto& b : geometry::running_bond_wall(4, 5, 0.24, 0.12, 0.055))
@@ -109,7 +90,7 @@ TEST_CASE("thread ranges: a wall of deformable blocks is cut between two blocks,
 }
 
 TEST_CASE("thread ranges: one deformable block is cut inside, at the same fraction of its nodes and elements") {
-  TwoThreads two;
+  const test::ScopedThreads two(2);
   if (parallel::available_threads() < 2) return;
   model::Model m;
   m.add_block(geometry::make_box(Vec3(-1, -1, -0.5), Vec3(1, 1, 0)), 2000, "base", 0, model::Motion::fixed);
