@@ -432,7 +432,8 @@ void load_checkpoint(const std::string& path, std::uint64_t model_hash, ReadPayl
     std::snprintf(hashes, sizeof hashes, "model hash %016llx, this run has %016llx",
                   static_cast<unsigned long long>(h.model_hash), static_cast<unsigned long long>(model_hash));
     throw InvalidArgument(prefix + "the checkpoint is of another model or other options (it holds '" + h.description +
-                          "', " + hashes + ")");
+                          "', " + hashes + "); a build for another instruction set (BLOCKDEM_NATIVE, or another "
+                          "processor) computes the model differently by rounding, and so another model hash");
   }
   // The checksum first, in chunks, so that a corrupted payload is reported as such and not as whatever the reader
   // would trip over; then the payload again, read.

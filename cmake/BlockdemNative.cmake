@@ -1,0 +1,26 @@
+# The programs and the Python module built for this machine's instruction set (BLOCKDEM_NATIVE, on by default):
+# -march=native where the compiler takes it. On the development machine (a Zen 4 with AVX-512) the rigid vault's
+# step is 1.6 (MassProportional) to 2.0 (Maxwell<3>) times as fast as in a portable x86-64 build, the deformable
+# vault's 1.0-1.2 times (docs/performance.md, portable or native programs). Results differ from a portable build's by
+# rounding (GCC fuses multiplies and adds, Eigen uses FMA), so that a checkpoint resumes only in a build of the same
+# kind; and a program built here may not start on an older processor (a cluster's compute nodes, when built on its
+# login node): configure with -DBLOCKDEM_NATIVE=OFF there. The library itself never sets -march; a user's own program
+# chooses. The tests are built portable.
+include(CheckCXXCompilerFlag)
+if(BLOCKDEM_NATIVE)
+  check_cxx_compiler_flag(-march=native blockdem_has_march_native)
+  if(NOT blockdem_has_march_native)
+    message(STATUS "blockdem: the compiler does not take -march=native; the programs are built portable")
+  endif()
+endif()
+
+function(blockdem_target_native target)
+  if(BLOCKDEM_NATIVE AND blockdem_has_march_native)
+    target_compile_options(${target} PRIVATE -march=native)
+    # GCC 12 takes the _mm256_undefined_pd() of Eigen's AVX-512 packets for an uninitialised value (its matrix-vector
+    # product): a false alarm in a system header. The portable build of the tests keeps the warning.
+    if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+      target_compile_options(${target} PRIVATE -Wno-maybe-uninitialized)
+    endif()
+  endif()
+endfunction()
