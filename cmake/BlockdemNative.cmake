@@ -1,11 +1,12 @@
-# The programs and the Python module built for this machine's instruction set (BLOCKDEM_NATIVE, on by default):
+# The programs and the Python module built for this machine's instruction set (-DBLOCKDEM_NATIVE=ON; off by default):
 # -march=native where the compiler takes it. On the development machine (a Zen 4 with AVX-512) the rigid vault's
 # step is 1.6 (MassProportional) to 2.0 (Maxwell<3>) times as fast as in a portable x86-64 build, the deformable
-# vault's 1.0-1.2 times (docs/performance.md, portable or native programs). Results differ from a portable build's by
-# rounding (GCC fuses multiplies and adds, Eigen uses FMA), so that a checkpoint resumes only in a build of the same
-# kind; and a program built here may not start on an older processor (a cluster's compute nodes, when built on its
-# login node): configure with -DBLOCKDEM_NATIVE=OFF there. The library itself never sets -march; a user's own program
-# chooses. The tests are built portable.
+# vault's 1.0-1.2 times (docs/performance.md, portable or native programs). Off by default, because results differ
+# from a portable build's by rounding (GCC fuses multiplies and adds, Eigen uses FMA), which a cracking structure
+# carries into its histories (the rigid vault's crown, 8 % of its peak at the 50 % level), while a portable build
+# gives the same bits on every x86-64 processor; a checkpoint resumes only in a build of the kind that wrote it; and
+# a native program may not start on an older processor (a cluster's compute nodes, when built on its login node).
+# The library itself never sets -march; a user's own program chooses. The tests are always built portable.
 include(CheckCXXCompilerFlag)
 if(BLOCKDEM_NATIVE)
   check_cxx_compiler_flag(-march=native blockdem_has_march_native)
