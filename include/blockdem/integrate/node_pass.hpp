@@ -110,7 +110,7 @@ void node_contact_range(G& g, const model::Model& m, const Damping& damping, dou
       const Vec3 f = area * (sn * fr.n + s1 * fr.t1 + s2 * fr.t2);
       force[k] = f;
       if constexpr (rigid_face) g.moment[k] = fr.arm.cross(f);
-    if constexpr (L::dissipates) slip_dissipation[k] += area * r.dissipated;
+      if constexpr (L::dissipates) slip_dissipation[k] += area * r.dissipated;
     }
   }
 }
