@@ -8,20 +8,29 @@
 # a native program may not start on an older processor (a cluster's compute nodes, when built on its login node).
 # The library itself never sets -march; a user's own program chooses. The tests are always built portable.
 include(CheckCXXCompilerFlag)
-if(BLOCKDEM_NATIVE)
+if(BLOCKDEM_NATIVE OR BLOCKDEM_BENCHMARKS_NATIVE)
   check_cxx_compiler_flag(-march=native blockdem_has_march_native)
-  if(NOT blockdem_has_march_native)
+  if(BLOCKDEM_NATIVE AND NOT blockdem_has_march_native)
     message(STATUS "blockdem: the compiler does not take -march=native; the programs are built portable")
   endif()
 endif()
 
-function(blockdem_target_native target)
-  if(BLOCKDEM_NATIVE AND blockdem_has_march_native)
+# `target` built for this machine's instruction set, where the compiler takes -march=native (the benchmarks always,
+# unless BLOCKDEM_BENCHMARKS_NATIVE is off).
+function(blockdem_target_march_native target)
+  if(blockdem_has_march_native)
     target_compile_options(${target} PRIVATE -march=native)
     # GCC 12 takes the _mm256_undefined_pd() of Eigen's AVX-512 packets for an uninitialised value (its matrix-vector
     # product): a false alarm in a system header. The portable build of the tests keeps the warning.
     if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
       target_compile_options(${target} PRIVATE -Wno-maybe-uninitialized)
     endif()
+  endif()
+endfunction()
+
+# A program or the Python module: for this machine only with -DBLOCKDEM_NATIVE=ON.
+function(blockdem_target_native target)
+  if(BLOCKDEM_NATIVE)
+    blockdem_target_march_native(${target})
   endif()
 endfunction()
