@@ -64,27 +64,32 @@ void node_contact_range(G& g, const model::Model& m, const Damping& damping, dou
     for (std::size_t l = 0; l < used; ++l) {
       const std::size_t k = first + l;
       Frame& fr = frames[l];
-      Vec3 v_face;
+      // The frame in locals, stored once: read back from the tile's array, a vector written a component at a time
+      // came back as a pair (a store-forwarding stall per CP).
+      Vec3 n, t1, v_face;
       if constexpr (!rigid_face) {
         const auto& tri = g.triangle[k];
         const auto& w = g.weight[k];
         const Vec3 e1 = x[tri[1]] - x[tri[0]];
-        fr.n = -e1.cross(x[tri[2]] - x[tri[0]]).normalized();
-        fr.t1 = e1.normalized();
+        n = -e1.cross(x[tri[2]] - x[tri[0]]).normalized();
+        t1 = e1.normalized();
         v_face = w[0] * velocity[tri[0]] + w[1] * velocity[tri[1]] + w[2] * velocity[tri[2]];
       } else {
         const std::uint32_t fb = g.face_block[k];
         const Mat3& r = b.rotation[fb];
-        fr.n = rotate(r, g.normal_local[k]);
-        fr.t1 = rotate(r, g.tangent_local[k]);
+        n = rotate(r, g.normal_local[k]);
+        t1 = rotate(r, g.tangent_local[k]);
         fr.arm = rotate(r, g.point_local[k]);
         v_face = b.velocity[fb] + b.angular_velocity[fb].cross(fr.arm);
       }
-      fr.t2 = fr.n.cross(fr.t1);
+      const Vec3 t2 = n.cross(t1);
       const Vec3 du = increment_dt * (v_face - velocity[node_of[k]]);
-      fr.du_n = du.dot(fr.n);
-      fr.du_1 = du.dot(fr.t1);
-      fr.du_2 = du.dot(fr.t2);
+      fr.n = n;
+      fr.t1 = t1;
+      fr.t2 = t2;
+      fr.du_n = du.dot(n);
+      fr.du_1 = du.dot(t1);
+      fr.du_2 = du.dot(t2);
     }
     for (std::size_t l = 0; l < used; ++l) {
       const std::size_t k = first + l;
@@ -242,56 +247,92 @@ bool node_pass(State& state, model::Model& m, const Damping& damping, double dt,
   // node): the inertia force m a_frame of the moving frame, and the frame's work (m dv - F dt) . v_frame.
   [[maybe_unused]] const Vec3 frame_acceleration = (frame.after - frame.before) / dt;
   [[maybe_unused]] const Vec3 frame_middle = 0.5 * (frame.before + frame.after);
-#pragma omp parallel if (count > 1024) reduction(|| : moved)
+#pragma omp parallel if (count > 1024) reduction(|| : moved) \
+    firstprivate(group_force, gravity, frame_acceleration, frame_middle, dt, increment_dt, move, redetection)
   {
     const auto [first_node, end_node] = parallel::my_range(state.node_bounds, count);
+    // Every value the loop reads is a local of the thread (the scalars above firstprivate, the policy and the
+    // frame copied, the arrays through local pointers): Eigen stores its packets through a type that may alias
+    // anything (SSE's unaligned store), so through the shared references GCC reloaded them after each node's stores.
+    const Damping policy = damping;
+    const damping::FrameVelocity table = frame;
+    const std::uint32_t* __restrict const element_first = state.element_first.data();
+    const std::uint32_t* __restrict const element_entry = state.element_entry.data();
+    const std::array<Vec3, 4>* __restrict const element_force = state.element_force.data();
+    const std::uint32_t* __restrict const node_first = state.node_first.data();
+    const std::uint32_t* __restrict const node_entry = state.node_entry.data();
+    const double* __restrict const node_coefficient = state.node_coefficient.data();
+    const std::uint32_t* __restrict const truss_first = state.truss_first.data();
+    const std::uint32_t* __restrict const truss_entry = state.truss_entry.data();
+    const Vec3* __restrict const truss_force = state.truss_force.data();
+    const double* __restrict const mass_of = nd.mass.data();
+    const double* __restrict const real_mass = nd.real_mass.data();
+    const double* __restrict const inverse_mass = state.node_inverse_mass.data();
+    const std::uint8_t* __restrict const fixity_of = nd.fixity.data();
+    const Vec3* __restrict const detected = state.detected_node_position.data();
+    Vec3* __restrict const node_force = nd.force.data();
+    Vec3* __restrict const velocity = nd.velocity.data();
+    Vec3* __restrict const position = nd.position.data();
+    double* __restrict const kinetic = state.node_kinetic.data();
+    double* __restrict const viscous = state.node_viscous.data();
+    double* __restrict const gravity_work = state.node_gravity_work.data();
+    [[maybe_unused]] double* __restrict const frame_work = state.node_frame_work.data();
+    const double redetection_squared = redetection * redetection;
+    bool moved_here = false;  // a register: the reduction's own copy lived on the stack, stored and read per node
     for (std::size_t i = first_node; i < end_node; ++i) {
       Vec3 force = Vec3::Zero();
-      for (std::uint32_t e = state.element_first[i]; e < state.element_first[i + 1]; ++e) {
-        const std::uint32_t code = state.element_entry[e];
-        force += state.element_force[code >> 2][code & 3u];
+      for (std::uint32_t e = element_first[i]; e < element_first[i + 1]; ++e) {
+        const std::uint32_t code = element_entry[e];
+        force += element_force[code >> 2][code & 3u];
       }
-      for (std::uint32_t e = state.node_first[i]; e < state.node_first[i + 1]; ++e) {
-        const std::uint32_t code = state.node_entry[e];
-        force += state.node_coefficient[e] * group_force[code >> State::node_entry_group_shift][code & State::node_entry_point_mask];
+      for (std::uint32_t e = node_first[i]; e < node_first[i + 1]; ++e) {
+        const std::uint32_t code = node_entry[e];
+        force += node_coefficient[e] * group_force[code >> State::node_entry_group_shift][code & State::node_entry_point_mask];
       }
-      for (std::uint32_t e = state.truss_first[i]; e < state.truss_first[i + 1]; ++e) {
-        const std::uint32_t code = state.truss_entry[e];
-        force += (code & 1u) ? Vec3(-state.truss_force[code >> 1]) : state.truss_force[code >> 1];
+      for (std::uint32_t e = truss_first[i]; e < truss_first[i + 1]; ++e) {
+        const std::uint32_t code = truss_entry[e];
+        force += (code & 1u) ? Vec3(-truss_force[code >> 1]) : truss_force[code >> 1];
       }
-      force += nd.real_mass[i] * gravity;
-      nd.force[i] = force;
+      force += real_mass[i] * gravity;
+      node_force[i] = force;
       if constexpr (std::is_same_v<Damping, damping::Local>)
-        if (damping.split_rigid_motion) continue;  // updated block by block below, once every force is gathered
-      const damping::Inertia mass{nd.mass[i], state.node_inverse_mass[i]};
-      const Vec3 v_old = nd.velocity[i];
-      Vec3 v;
+        if (policy.split_rigid_motion) continue;  // updated block by block below, once every force is gathered
+      const damping::Inertia mass{mass_of[i], inverse_mass[i]};
+      const Vec3 v_old = velocity[i];
       double dissipated = 0.0;
-      const std::uint8_t fixity = nd.fixity[i];
+      const std::uint8_t fixity = fixity_of[i];
+      // The three components as scalars, one after the other: written into a vector one component at a time, the
+      // new velocity went through the stack and was read back as a pair (a store-forwarding stall per node).
+      double v0 = 0.0, v1 = 0.0, v2 = 0.0;
       if constexpr (damping::damps_velocities<Damping>()) {
         double by_frame = 0.0;
-        for (int c = 0; c < 3; ++c) {
-          if (fixity & (1u << c)) {
-            v[c] = 0.0;
-            continue;
-          }
-          v[c] = damping.velocity_update(v_old[c] - frame.before[c], force[c] - mass.value * frame_acceleration[c], mass, dt, dissipated) +
-                 frame.after[c];
-          by_frame += (mass.value * (v[c] - v_old[c]) - force[c] * dt) * frame_middle[c];
-        }
-        state.node_frame_work[i] += by_frame;
+        const auto component = [&](int c) {
+          const double v = policy.velocity_update(v_old[c] - table.before[c], force[c] - mass.value * frame_acceleration[c], mass, dt,
+                                                   dissipated) +
+                           table.after[c];
+          by_frame += (mass.value * (v - v_old[c]) - force[c] * dt) * frame_middle[c];
+          return v;
+        };
+        if (!(fixity & 1u)) v0 = component(0);
+        if (!(fixity & 2u)) v1 = component(1);
+        if (!(fixity & 4u)) v2 = component(2);
+        frame_work[i] += by_frame;
       } else {
-        for (int c = 0; c < 3; ++c) v[c] = (fixity & (1u << c)) ? 0.0 : damping.velocity_update(v_old[c], force[c], mass, dt, dissipated);
+        if (!(fixity & 1u)) v0 = policy.velocity_update(v_old[0], force[0], mass, dt, dissipated);
+        if (!(fixity & 2u)) v1 = policy.velocity_update(v_old[1], force[1], mass, dt, dissipated);
+        if (!(fixity & 4u)) v2 = policy.velocity_update(v_old[2], force[2], mass, dt, dissipated);
       }
-      nd.velocity[i] = v;
-      state.node_kinetic[i] = 0.5 * mass.value * v_old.dot(v);
-      state.node_viscous[i] += dissipated;
-      state.node_gravity_work[i] += nd.real_mass[i] * gravity.dot(v_old) * increment_dt;
+      const Vec3 v(v0, v1, v2);
+      velocity[i] = v;
+      kinetic[i] = 0.5 * mass.value * v_old.dot(v);
+      viscous[i] += dissipated;
+      gravity_work[i] += real_mass[i] * gravity.dot(v_old) * increment_dt;
       if (move) {
-        nd.position[i] += dt * v;
-        moved = moved || (nd.position[i] - state.detected_node_position[i]).squaredNorm() > redetection * redetection;
+        position[i] += dt * v;
+        moved_here |= (position[i] - detected[i]).squaredNorm() > redetection_squared;
       }
     }
+    moved = moved || moved_here;
   }
   if constexpr (std::is_same_v<Damping, damping::Local>)
     if (damping.split_rigid_motion) moved = split_node_update(state, m, damping, dt, increment_dt, move, redetection);
