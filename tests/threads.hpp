@@ -9,30 +9,6 @@
 
 namespace blockdem::test {
 
-/// Runs `run()` (returning a vector of values) on one thread and on two, and counts the entries that differ; the
-/// thread count is restored to the number of processors afterwards.
-template <class Run>
-std::size_t differences_between_one_and_two_threads(Run run) {
-  auto with = [&](int threads) {
-#ifdef _OPENMP
-    omp_set_num_threads(threads);
-#else
-    (void)threads;
-#endif
-    return run();
-  };
-  const auto one = with(1);
-  const auto two = with(2);
-#ifdef _OPENMP
-  omp_set_num_threads(omp_get_num_procs());
-#endif
-  if (one.size() != two.size()) return one.size() + two.size();
-  std::size_t different = 0;
-  for (std::size_t i = 0; i < one.size(); ++i)
-    if (one[i] != two[i]) ++different;
-  return different;
-}
-
 /// `n` OpenMP threads while it lives, the number of processors again afterwards.
 struct ScopedThreads {
   explicit ScopedThreads(int n) {
@@ -50,6 +26,23 @@ struct ScopedThreads {
   ScopedThreads(const ScopedThreads&) = delete;
   ScopedThreads& operator=(const ScopedThreads&) = delete;
 };
+
+/// Runs `run()` (returning a vector of values) on one thread and on two, and counts the entries that differ; the
+/// thread count is the number of processors again afterwards, also when `run` throws.
+template <class Run>
+std::size_t differences_between_one_and_two_threads(Run run) {
+  const auto on = [&](int threads) {
+    const ScopedThreads scoped(threads);
+    return run();
+  };
+  const auto one = on(1);
+  const auto two = on(2);
+  if (one.size() != two.size()) return one.size() + two.size();
+  std::size_t different = 0;
+  for (std::size_t i = 0; i < one.size(); ++i)
+    if (one[i] != two[i]) ++different;
+  return different;
+}
 
 /// One OpenMP thread for a test case (ctest runs two tests at once on two cores; threads that wait on a busy core
 /// slow a run many times over).
