@@ -68,9 +68,7 @@ struct alignas(32) Lanes {
     const double a = get(0), b = get(1), c = get(2), d = get(3);
     return of(a, b, c, d);
   }
-  /// {s, s, s, s}.
-  [[gnu::always_inline]] static Lanes all(double s) { return of(s, s, s, s); }
-  [[gnu::always_inline]] static Lanes zero() { return all(0.0); }
+  [[gnu::always_inline]] static Lanes zero() { return of(0.0, 0.0, 0.0, 0.0); }
 
   [[gnu::always_inline]] double operator[](std::size_t j) const {
 #if BLOCKDEM_LANES_AVX
