@@ -4,6 +4,8 @@
 // (integrate/node_contact_assignment.hpp). The law says how its state does so (contact::ContactLaw: turn_shear,
 // start_unbonded); the engine never reads a history's members.
 
+#include <algorithm>
+
 #include "blockdem/contact/concepts.hpp"
 #include "blockdem/integrate/contact_frame.hpp"
 
@@ -15,10 +17,18 @@ enum class Inheritance {
   same_point,       // an old contact point at the same place of the same block pair: its whole state
   same_joint,       // a point that the joint's re-drawn contact adds (a corner that appeared as the faces turned, a
                     // CP split off): the state of the joint where it is, that of the old contact's closest point,
-                    // with its own gap and no damping state
+                    // with its own gap but closed no farther than that point, and no damping state
   new_contact,      // where the pair had no contact (an impact after separation, a new pair after sliding): never
-                    // part of a bonded joint, it starts unbonded (contact::ContactLaw::start_unbonded)
+                    // part of a bonded joint, it starts unbonded (contact::ContactLaw::start_unbonded), touching at
+                    // most
 };
+
+// A point that a re-detection finds already closed (an overlap) is loaded only as far as a contact point that stood
+// there all along would be: a new contact from touching (gap 0), a point of a re-drawn joint from the closure of
+// the joint's point it inherits. The laws are incremental (as in 3DEC), so the overlap beyond stays unloaded and
+// the stress grows from there with the gap's increments. The overlap is the faces' motion between two detections,
+// when no spring stood there: loading it at once would store 1/2 k_n d^2 that no force put in, and give it back
+// as motion when the joint opens (docs/energy.md, what re-detection does to the balance).
 
 /// The law's history of a contact point found with gap `gap` (m) whose state comes from `old` (same_point and
 /// same_joint; null otherwise), its shear turned to the new contact frame by `turn`.
@@ -36,11 +46,12 @@ typename L::History inherited_history(Inheritance from, const typename L::Histor
       break;
     case Inheritance::same_joint:
       h = *old;
-      h.gap = gap;
+      h.gap = std::max(gap, std::min(old->gap, 0.0));
       L::turn_shear(h, turn);
       break;
     case Inheritance::new_contact:
       L::start_unbonded(h);
+      h.gap = std::max(gap, 0.0);
       break;
   }
   return h;

@@ -26,8 +26,9 @@ struct EnergyReport {
   double base_work = 0;     // done by the base blocks on the rest (and by dashpots anchored to them: damping/frame.hpp)
   double viscous = 0;       // dissipated by viscous damping
   double slip = 0;          // dissipated by the joint laws (friction, softening)
-  // Changes of the discrete model, done by no force: the energy re-detection stores in the contacts (CPs that start
-  // in overlap, minus the energy of CPs dropped while loaded, plus that of CPs whose tributary area changed; with
+  // Changes of the discrete model, done by no force: the energy re-detection stores in the contacts (CPs of a
+  // re-drawn joint that take its state, minus the energy of CPs dropped while loaded, plus that of CPs whose
+  // tributary area changed; CPs found in overlap start touching and store nothing; with
   // the joints intact it stays near 0), the kinetic energy of the masses the timestep hold raises, and the change of
   // the scheme's kinetic energy measure at a step taken with another timestep than the move before it
   // (half_step_kinetic).

@@ -438,9 +438,9 @@ class Simulation {
     moved_since_detection_ = moved_since_detection_ || moved;
   }
 
-  /// Detects the contacts again and computes the forces of the new set. The discrete model changes here: CPs that
-  /// start in overlap (an impact, a vertex that slid onto a face), CPs dropped while loaded, CPs whose tributary area
-  /// changed. The energy stored in the contacts that this adds or removes is done by no force; it is kept as its own
+  /// Detects the contacts again and computes the forces of the new set. The discrete model changes here: CPs of a
+  /// re-drawn joint that start at the closure of the joint's point they inherit, CPs dropped while loaded, CPs whose
+  /// tributary area changed (CPs found in overlap start touching: integrate/contact_history.hpp). The energy stored in the contacts that this adds or removes is done by no force; it is kept as its own
   /// term of the balance (EnergyReport::contact_update), measured, not inferred from the residual.
   template <bool Mixed>
   void redetect_and_update();
