@@ -2,7 +2,7 @@
 // What a contact point found at a re-detection inherits from the contacts before it: one rule for the contacts
 // between rigid blocks (integrate/contact_assignment.hpp) and the node contacts of deformable blocks
 // (integrate/node_contact_assignment.hpp). The law says how its state does so (contact::ContactLaw: turn_shear,
-// start_unbonded); the engine never reads a history's members.
+// start_unbonded); of a history's members the engine sets the gap only, and reads an old one's to bound it.
 
 #include <algorithm>
 
@@ -19,8 +19,8 @@ enum class Inheritance {
                     // CP split off): the state of the joint where it is, that of the old contact's closest point,
                     // with its own gap but closed no farther than that point, and no damping state
   new_contact,      // where the pair had no contact (an impact after separation, a new pair after sliding): never
-                    // part of a bonded joint, it starts unbonded (contact::ContactLaw::start_unbonded), touching at
-                    // most
+                    // part of a bonded joint, it starts unbonded (contact::ContactLaw::start_unbonded), closed no
+                    // farther than touching
 };
 
 // A point that a re-detection finds already closed (an overlap) is loaded only as far as a contact point that stood

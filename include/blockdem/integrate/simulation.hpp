@@ -440,8 +440,9 @@ class Simulation {
 
   /// Detects the contacts again and computes the forces of the new set. The discrete model changes here: CPs of a
   /// re-drawn joint that start at the closure of the joint's point they inherit, CPs dropped while loaded, CPs whose
-  /// tributary area changed (CPs found in overlap start touching: integrate/contact_history.hpp). The energy stored in the contacts that this adds or removes is done by no force; it is kept as its own
-  /// term of the balance (EnergyReport::contact_update), measured, not inferred from the residual.
+  /// tributary area changed (CPs found in overlap start touching: integrate/contact_history.hpp). The energy stored
+  /// in the contacts that this adds or removes is done by no force; it is kept as its own term of the balance
+  /// (EnergyReport::contact_update), measured, not inferred from the residual.
   template <bool Mixed>
   void redetect_and_update();
 
