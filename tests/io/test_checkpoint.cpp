@@ -23,6 +23,8 @@
 #include "blockdem/contact/mohr_coulomb.hpp"
 #include "blockdem/contact/softening.hpp"
 #include "blockdem/core/units.hpp"
+#include "blockdem/damping/frame.hpp"
+#include "blockdem/damping/local.hpp"
 #include "blockdem/damping/mass_proportional.hpp"
 #include "blockdem/damping/maxwell.hpp"
 #include "blockdem/damping/none.hpp"
@@ -465,6 +467,48 @@ TEST_CASE("checkpoint: writer and reader round trip values, vectors, nested vect
   // The hash helper: FNV-1a 64 of "a" is af63dc4c8601ec8c (the published test vector).
   CHECK(io::hash_bytes("a") == 0xaf63dc4c8601ec8cull);
   CHECK(io::Hasher().add("ab").add("c").value() != io::Hasher().add("a").add("bc").value());
+}
+
+TEST_CASE("checkpoint: a stored bool or enumerator that is no value of its type is refused by name, not read") {
+  // The checksum guards a file; a payload read without one (or a checksum that collides) must still never give a bool
+  // that is neither false nor true (undefined behaviour wherever it is read) or an enumerator out of range.
+  std::stringstream buffer;
+  io::CheckpointWriter w(buffer);
+  const unsigned char flag48 = 48, flag1 = 1, motion7 = 7;
+  w.write_bytes(&flag1, 1);  // a valid flag
+  w.write_bytes(&flag48, 1);  // the byte a fuzzer found in place of the simulation's "mixed step"
+  damping::Local local;
+  w.write(local);
+  w.write(std::vector<model::Motion>{model::Motion::free, model::Motion::base});
+  w.write(std::uint64_t{2});  // a vector of two motions, the second out of range
+  w.write_bytes(&flag1, 1);
+  w.write_bytes(&motion7, 1);
+  w.write(int{5});  // damping::Frame has two enumerators
+  io::CheckpointReader r(buffer, "memory", w.bytes());
+  CHECK(r.read_value<bool>("a flag"));
+  CHECK_THROWS_WITH_AS(r.read_value<bool>("mixed step"),
+                       doctest::Contains("checkpoint 'memory': a flag stored as 48, not 0 or 1 (reading mixed step)"),
+                       InvalidArgument);
+  CHECK_NOTHROW(r.read_value<damping::Local>("damping policy"));
+  CHECK(r.read_value<std::vector<model::Motion>>("block motions") ==
+        std::vector<model::Motion>{model::Motion::free, model::Motion::base});
+  CHECK_THROWS_WITH_AS(r.read_value<std::vector<model::Motion>>("block motions"),
+                       doctest::Contains("an enumerator out of range (stored 7) (reading block motions)"), InvalidArgument);
+  CHECK_THROWS_WITH_AS(r.read_value<damping::Frame>("damping frame"),
+                       doctest::Contains("an enumerator out of range (stored 5) (reading damping frame)"), InvalidArgument);
+
+  // A bool member of a plain class (listed in its checkpoint_flags()) is checked as well.
+  std::stringstream policy;
+  io::CheckpointWriter pw(policy);
+  pw.write(local);
+  std::string bytes = policy.str();
+  const auto at = static_cast<std::size_t>(reinterpret_cast<const char*>(&local.split_rigid_motion) -
+                                           reinterpret_cast<const char*>(&local));
+  bytes[at] = 2;
+  std::istringstream spoiled(bytes);
+  io::CheckpointReader pr(spoiled, "memory", bytes.size());
+  CHECK_THROWS_WITH_AS(pr.read_value<damping::Local>("damping policy"),
+                       doctest::Contains("a flag stored as 2, not 0 or 1 (reading damping policy)"), InvalidArgument);
 }
 
 TEST_CASE("checkpoint: refusals name the file and the problem") {

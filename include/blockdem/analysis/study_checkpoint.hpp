@@ -2,6 +2,7 @@
 // The checkpoints of a study: where the study stands (StudyCursor), the hash that ties a checkpoint to
 // one model and one set of options, and the one list of what a checkpoint holds, for writing and reading.
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <type_traits>
@@ -31,6 +32,8 @@ struct StudyCursor {
   double level_wall_seconds = 0;  // wall time of the level so far, over every run that worked on it
   long long dynamic_steps = 0;    // steps of the dynamic run so far, all levels
   EnergyReport energy_at_level_start;
+  /// Its bool members, which a checkpoint reader checks (io/checkpoint.hpp).
+  static constexpr std::array<bool StudyCursor::*, 1> checkpoint_flags() { return {&StudyCursor::in_level}; }
 };
 
 inline constexpr const char* study_checkpoint_file = "checkpoint.bin";

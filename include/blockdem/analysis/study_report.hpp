@@ -3,6 +3,7 @@
 // each level (damage and contact points for ParaView, a contact table for the plots) and the snapshots. Every file is
 // written under a temporary name and renamed when complete.
 
+#include <array>
 #include <cstddef>
 #include <cstdio>
 #include <limits>
@@ -86,6 +87,8 @@ struct SettlingResult {
   double dt = 0;  // s, of the static mass scaling
   bool converged = false;
   long long damaged_joints = 0, cracked_joints = 0, crushed_joints = 0;  // contact points, once settled
+  /// Its bool members, which a checkpoint reader checks (io/checkpoint.hpp).
+  static constexpr std::array<bool SettlingResult::*, 1> checkpoint_flags() { return {&SettlingResult::converged}; }
 };
 
 /// The first mode of the settled structure in free decay at its first monitor point (measure_free_vibration).

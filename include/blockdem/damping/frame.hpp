@@ -18,6 +18,7 @@
 namespace blockdem::damping {
 
 enum class Frame { table, absolute };
+constexpr bool valid_enumerator(Frame f) noexcept { return f == Frame::table || f == Frame::absolute; }
 
 /// The velocity of the frame over the move that led to the present positions and over the next one: the table's, or
 /// zero (the ground's frame).

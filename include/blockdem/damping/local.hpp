@@ -7,6 +7,8 @@
 // the explicit scheme holds for omega dt < 2 / sqrt(1 + c) (0.745 of 2 / omega for c = 0.8; tested on one
 // degree of freedom, where it settles just below and diverges just above).
 
+#include <array>
+
 #include "blockdem/core/constexpr_math.hpp"
 #include "blockdem/damping/concepts.hpp"
 
@@ -18,6 +20,8 @@ struct Local {
   // by the rest of each node's force (integrate/local_split.hpp), instead of every node by its own force. For static
   // solves where deformable blocks may form a mechanism; rigid blocks are damped the same either way.
   bool split_rigid_motion = false;
+  /// Its bool members, which a checkpoint reader checks (io/checkpoint.hpp).
+  static constexpr std::array<bool Local::*, 1> checkpoint_flags() { return {&Local::split_rigid_motion}; }
   using ContactState = NoState;
   constexpr double spring_stress(ContactState&, double, double, double, bool, double&) const noexcept { return 0.0; }
   static constexpr double held_stress(const ContactState&) noexcept { return 0.0; }

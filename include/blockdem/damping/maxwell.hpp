@@ -304,6 +304,8 @@ struct Maxwell {
   /// Contacts between rigid blocks start in the field form; false keeps every CP's own branch state from the start
   /// (the reference the field form is tested against).
   bool contact_field = true;
+  /// Its bool members, which a checkpoint reader checks (io/checkpoint.hpp).
+  static constexpr std::array<bool Maxwell::*, 1> checkpoint_flags() { return {&Maxwell::contact_field}; }
 
   /// The fields of four contacts, one per lane, as the contact pass advances them (ContactGroup keeps them so):
   /// forces[i][j] holds component j of F_i (the last slot their sum, as in ContactField), stiffness[stiffness_slot(j)]

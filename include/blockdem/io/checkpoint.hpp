@@ -112,6 +112,19 @@ struct IsArray : std::false_type {};
 template <class T, std::size_t N>
 struct IsArray<std::array<T, N>> : std::true_type {};
 
+/// Whether a stored value of type T can be bytes that are no value of T, which the reader then checks: a bool (0 or 1:
+/// another byte is undefined behaviour wherever the bool is read), an enumeration that says which values it has (a
+/// function valid_enumerator(T), found by argument-dependent lookup: a value out of range would be a silent wrong
+/// branch), std::arrays of those, and plain classes that list their bool members (a static member function
+/// checkpoint_flags() returning an array of member pointers).
+template <class T>
+constexpr bool has_invalid_bytes() {
+  if constexpr (std::is_same_v<T, bool>) return true;
+  else if constexpr (std::is_enum_v<T>) return requires(T e) { valid_enumerator(e); };
+  else if constexpr (IsArray<T>::value) return has_invalid_bytes<typename T::value_type>();
+  else return requires { T::checkpoint_flags(); };
+}
+
 /// The fewest payload bytes one element of type T takes (for the bound on a stored count).
 template <class T>
 constexpr std::uint64_t min_bytes() {
@@ -233,6 +246,7 @@ class CheckpointReader {
   void read(T& value, std::string_view what = "a value") {
     if constexpr (detail::Plain<T>::value) {
       read_bytes(&value, sizeof value, what);
+      if constexpr (detail::has_invalid_bytes<T>()) check_stored(value, what);
     } else if constexpr (detail::IsVector<T>::value) {
       using E = typename T::value_type;
       const std::uint64_t n = read_count<E>(what);
@@ -302,10 +316,32 @@ class CheckpointReader {
   template <class V>
   void read_elements(V& value, std::string_view what) {
     using E = typename V::value_type;
-    if constexpr (detail::Plain<E>::value)
+    if constexpr (detail::Plain<E>::value) {
       read_bytes(value.data(), value.size() * sizeof(E), what);
-    else
+      if constexpr (detail::has_invalid_bytes<E>())
+        for (const auto& e : value) check_stored(e, what);
+    } else
       for (auto& e : value) read(e, what);
+  }
+
+  /// A value just read as bytes that not every byte pattern is (detail::has_invalid_bytes): its bools must be 0 or 1
+  /// (looked at as bytes, not read as bools), its enumerators valid.
+  template <class T>
+  void check_stored(const T& value, std::string_view what) const {
+    if constexpr (std::is_same_v<T, bool>) {
+      static_assert(sizeof(bool) == 1);
+      unsigned char byte = 0;
+      std::memcpy(&byte, &value, 1);
+      if (byte > 1) fail(what, "a flag stored as " + std::to_string(byte) + ", not 0 or 1");
+    } else if constexpr (std::is_enum_v<T>) {
+      if (!valid_enumerator(value))
+        fail(what, "an enumerator out of range (stored " +
+                       std::to_string(static_cast<long long>(static_cast<std::underlying_type_t<T>>(value))) + ")");
+    } else if constexpr (detail::IsArray<T>::value) {
+      for (const auto& e : value) check_stored(e, what);
+    } else {
+      for (auto member : T::checkpoint_flags()) check_stored(value.*member, what);
+    }
   }
 
   std::istream* in_;

@@ -19,6 +19,7 @@ namespace blockdem::model {
 /// How a block moves: free (equations of motion), fixed (never moves), or base (follows the prescribed base
 /// velocity history, like a shake table; rotation none).
 enum class Motion : std::uint8_t { free, fixed, base };
+constexpr bool valid_enumerator(Motion m) noexcept { return m == Motion::free || m == Motion::fixed || m == Motion::base; }
 
 /// Degrees of freedom a free block may not use (bit i: translation i, bit 3 + i: rotation about world axis i).
 enum Fixity : std::uint8_t {
