@@ -7,7 +7,7 @@
 # Left out by default (BLOCKDEM_SANITIZE_EXCLUDE, a ctest -E regex; set it empty to run them), each a long run whose
 # code runs instrumented in shorter tests; the instrumented -O1 build runs 10-15 times slower than Release:
 # - the mixed and deformable vaults at rest and the deformable twin of a sliding block (50 s and 11 s in Release,
-#   over 10 minutes for the vaults instrumented): thousands of tetrahedra for hundreds of thousands of steps. The
+#   minutes for the vaults instrumented): thousands of tetrahedra for hundreds of thousands of steps. The
 #   element, node-contact and mixed-step code runs in the smaller deformable tests, the random mixed and deformable
 #   models of the model fuzz and the programs' deformable runs (program.arch.deformable,
 #   program.rocking_block.deformable);
