@@ -12,6 +12,7 @@
 
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -43,7 +44,13 @@ int main(int argc, char** argv) {
                  "unbalanced force ratio below which the arch stands (or, --to-rest, its pieces rest), (0, 0.1]")
       ->capture_default_str();
   app.add_option("--max-steps", o.max_steps, "most steps, >= 100")->capture_default_str();
-  app.add_flag("--nodal-damping", o.nodal_damping, "deformable: local damping on each node's own force (3DEC's) instead of on each "
+  app.add_option("--settling", o.settling,
+                 "how each trial comes to equilibrium or collapse: inertial (relaxation without damping, stopped when it "
+                 "starts uphill), local (local damping) or auto (inertial with --deformable, local for rigid voussoirs)")
+      ->transform(CLI::CheckedTransformer(std::map<std::string, analysis::Settling>{{"auto", analysis::Settling::automatic},
+                                                                                    {"inertial", analysis::Settling::inertial},
+                                                                                    {"local", analysis::Settling::local}}));
+  app.add_flag("--nodal-damping", o.nodal_damping, "deformable, local damping: local damping on each node's own force (3DEC's) instead of on each "
                "voussoir's rigid-body motion and deformation apart (docs/arch.md)");
   app.add_flag("--to-rest", o.to_rest, "after a collapse, go on until the voussoirs rest on the floor");
   app.add_flag("--json", json, "print a JSON object");
@@ -68,6 +75,7 @@ int main(int argc, char** argv) {
       io::JsonObject out;
       out.add("stands", r.stands)
           .add("lambda", o.lambda)
+          .add("settling", o.inertial() ? "inertial" : "local")
           .add("lambda_collapse", find_collapse ? lambda_collapse : std::numeric_limits<double>::quiet_NaN())
           .add("max_displacement_m", r.max_displacement)
           .add("at_rest", r.at_rest)
@@ -89,8 +97,9 @@ int main(int argc, char** argv) {
     } else {
       fmt::print("arch of {} voussoirs, t/R = {:g}, R = {:g} m, friction {:g} deg, lambda = {:g}: {}\n", o.voussoirs,
                  o.thickness_ratio, o.radius, o.friction_angle_deg, o.lambda, r.stands ? "STANDS" : "COLLAPSES");
-      fmt::print("max displacement {:.3e} m, unbalanced force ratio {:.2e}, {} steps of {:.3e} s, {:.2f} s\n",
-                 r.max_displacement, r.unbalanced_ratio, r.steps, r.timestep, r.wall_seconds);
+      fmt::print("max displacement {:.3e} m, unbalanced force ratio {:.2e}, {} steps of {:.3e} s ({}), {:.2f} s\n",
+                 r.max_displacement, r.unbalanced_ratio, r.steps, r.timestep, o.inertial() ? "inertial relaxation" : "local damping",
+                 r.wall_seconds);
       if (o.to_rest)
         fmt::print("{}: {} voussoirs on the floor, deepest overlap of two blocks {:.3e} m\n",
                    r.at_rest ? "at rest" : "still moving at max steps", r.voussoirs_on_floor, r.max_penetration);

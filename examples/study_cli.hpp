@@ -65,6 +65,13 @@ struct StudyCommand {
                                                "below it as given (0: the largest whose density scaling adds at most --mass-increase % of the mass)");
     app.add_option("--mass-increase", o.default_mass_increase_percent, "mass that the automatic timestep may add by density scaling, %");
     app.add_option("--max-mass-increase", o.max_mass_increase_percent, "refuse a --target-dt that adds more mass than this, %");
+    app.add_option("--settling", o.settling,
+                   "how the structure comes to rest under gravity: inertial (relaxation without damping, stopped when it "
+                   "starts uphill), local (local damping: 3DEC's, the paper's) or auto (inertial with deformable blocks, "
+                   "local for rigid ones)")
+        ->transform(CLI::CheckedTransformer(std::map<std::string, analysis::Settling>{{"auto", analysis::Settling::automatic},
+                                                                                      {"inertial", analysis::Settling::inertial},
+                                                                                      {"local", analysis::Settling::local}}));
     app.add_option("--settle-tolerance", o.settle_tolerance, "unbalanced-force ratio that ends settling");
     app.add_option("--settle-steps", o.settle_max_steps, "most steps of settling");
     app.add_option("--contacts", o.contacts,

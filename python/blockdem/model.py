@@ -224,12 +224,13 @@ class Model:
         return self
 
     def study(self, levels=None, rest=None, damping=None, zeta=None, frequency=None, band=None, branches=None,
-              frame=None, target_dt=None, mass_increase=None, max_mass_increase=None, settle_tolerance=None,
-              settle_steps=None, history_dt=None, snapshots_every=None, collapse_displacement=None,
+              frame=None, target_dt=None, mass_increase=None, max_mass_increase=None, settling=None,
+              settle_tolerance=None, settle_steps=None, history_dt=None, snapshots_every=None, collapse_displacement=None,
               runaway_displacement=None, max_speed=None, free_vibration=None):
         """The seismic study's options: levels (% of the record), rest (s), damping ('none', 'mass', 'stiffness',
         'rayleigh', 'maxwell') with zeta, frequency (Hz), band ((low, high) Hz), branches and frame ('table' or
-        'absolute'); target_dt (s), mass_increase and max_mass_increase (%); settle_tolerance, settle_steps;
+        'absolute'); target_dt (s), mass_increase and max_mass_increase (%); settling ('auto', 'inertial',
+        'local'), settle_tolerance, settle_steps;
         history_dt, snapshots_every (s); collapse_displacement, runaway_displacement (m), max_speed (m/s);
         free_vibration (bool). Unset ones keep the file's value or the default."""
         s = self.data.setdefault("study", {})
@@ -252,6 +253,7 @@ class Model:
         if t:
             s.setdefault("timestep", {}).update(t)
         st = {}
+        _set(st, "method", settling)
         _set(st, "tolerance", settle_tolerance)
         _set(st, "max_steps", settle_steps)
         if st:

@@ -17,7 +17,7 @@ class Simulation(_core.Simulation):
 
     model: a blockdem.Model or a model file's path. Options: those of blockdem.run that concern the run (damping,
     zeta, frequency, band, branches, damping_frame, target_dt, mass_increase, max_mass_increase, contacts,
-    settle_tolerance, settle_steps, max_speed, record, units, axis, record_level, truncate, window, baseline,
+    settling, settle_tolerance, settle_steps, max_speed, record, units, axis, record_level, truncate, window, baseline,
     progress). State: time, dt, steps, block_positions, block_velocities, block_angular_velocities,
     block_orientations, block_masses, node_positions, node_velocities, node_blocks, tetrahedra, element_stresses
     (numpy views of blockdem's storage, read-only, current as the run goes on), contacts(), energy(),

@@ -102,7 +102,7 @@ def run(model, out=None, **options):
     model: a blockdem.Model or the path of a model file. options override the model's study, under the names of
     `blockdem run`'s options: record (a path or a blockdem.Record), units, axis, record_level, levels, truncate,
     window, baseline, rest, damping, zeta, frequency, band, branches, damping_frame, target_dt, mass_increase,
-    max_mass_increase, settle_tolerance, settle_steps, contacts, collapse_displacement, runaway_displacement,
+    max_mass_increase, settling, settle_tolerance, settle_steps, contacts, collapse_displacement, runaway_displacement,
     max_speed, history_dt, snapshots_every, free_vibration, checkpoint_minutes, resume, stop_after_steps, progress
     (a progress line on stderr, default True).
 

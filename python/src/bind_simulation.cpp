@@ -58,7 +58,8 @@ class Session {
     contacts.kinds = o_.contacts;
     s.laws.fill(contacts);
     using Sim = analysis::StudySimulation<damping::Local>;
-    settle_ = std::make_unique<Settling>(s.model, damping::Local{}, analysis::detail::structure_properties<Sim>(s), contacts);
+    settle_ = std::make_unique<Settling>(s.model, analysis::detail::settling_damping(o_, s.model), analysis::detail::structure_properties<Sim>(s),
+                                         contacts);
     settle_->sim.set_run_guard(RunGuard{o_.max_speed});
     const FrequencyBound bound = settle_->sim.frequency_bound();
     plan_ = o_.damping == analysis::DampingScheme::maxwell ? plan_maxwell(*settle_, bound, o_, r_) : plan_viscous(*settle_, bound, o_, r_);
@@ -244,14 +245,14 @@ void bind_simulation(py::module_& m) {
   py::class_<Session>(m, "Simulation", R"(A model's simulation, stepped from Python (the steps of blockdem.run, one call at a time).
 
 Simulation(model, **options): the options of blockdem.run that concern the run (damping, zeta, frequency, band,
-branches, damping_frame, target_dt, mass_increase, max_mass_increase, contacts, settle_tolerance, settle_steps,
-max_speed, record, units, axis, record_level, truncate, window, baseline, progress). Then settle(), set_record(),
+branches, damping_frame, target_dt, mass_increase, max_mass_increase, contacts, settling, settle_tolerance,
+settle_steps, max_speed, record, units, axis, record_level, truncate, window, baseline, progress). Then settle(), set_record(),
 run(duration); read the state at any time. The damping policy is compiled in: choose it here, once.)")
       .def(py::init<const analysis::ModelFile&, const std::string&, const py::dict&>(), py::arg("file"), py::arg("source"),
            py::arg("options"))
       .def("settle", &Session::settle,
-           "Static equilibrium under gravity with local damping and static mass scaling, to settle_tolerance (the "
-           "unbalanced-force ratio) or settle_steps; as the study settles. Returns {steps, unbalanced_force_ratio, "
+           "Static equilibrium under gravity with static mass scaling, by inertial relaxation or local damping (settling), "
+           "to settle_tolerance (the unbalanced-force ratio) or settle_steps; as the study settles. Returns {steps, unbalanced_force_ratio, "
            "converged, wall_seconds}.")
       .def("run", &Session::run, py::arg("duration"),
            "Runs the dynamic simulation for `duration` s of simulated time (the first call starts it from the state "

@@ -112,6 +112,12 @@ const std::map<std::string, Setter>& setters() {
       {"target_dt", [](O& o, const py::handle& v, const std::string& k) { o.target_dt = number(v, k); }},
       {"mass_increase", [](O& o, const py::handle& v, const std::string& k) { o.default_mass_increase_percent = number(v, k); }},
       {"max_mass_increase", [](O& o, const py::handle& v, const std::string& k) { o.max_mass_increase_percent = number(v, k); }},
+      {"settling",
+       [](O& o, const py::handle& v, const std::string& k) {
+         o.settling = choice<analysis::Settling>(text(v, k), "settling", {{"auto", analysis::Settling::automatic},
+                                                                          {"inertial", analysis::Settling::inertial},
+                                                                          {"local", analysis::Settling::local}});
+       }},
       {"settle_tolerance", [](O& o, const py::handle& v, const std::string& k) { o.settle_tolerance = number(v, k); }},
       {"settle_steps", [](O& o, const py::handle& v, const std::string& k) { o.settle_max_steps = whole(v, k); }},
       {"contacts",

@@ -107,6 +107,7 @@ TEST_CASE("model file: two bricks on a table read back as written (blocks, masse
   CHECK(o.rest == 0.5);
   CHECK(o.damping == analysis::DampingScheme::mass);
   CHECK(o.frequency_hz == 5);
+  CHECK(o.settling == analysis::Settling::automatic);
   CHECK_FALSE(o.window_default);
   CHECK(o.window_end == 5);
   CHECK(file.scale.kind == analysis::RecordScale::Kind::pga);
@@ -197,6 +198,8 @@ TEST_CASE("model file: every bad file is refused with its line, column, field an
        "joints[0]: \"mortar_modulus\" is missing (eq. 7 needs"},
       {R"("scheme": "mass")", R"("scheme": "maxwell", "branches": 2.5)", "study.damping.branches: must be a whole number, got 2.5"},
       {R"("study": {)", R"("study": {"timestep": {"target_dt_s": 1},)", "study.timestep.target_dt_s: must be in [0, 0.01) s, got 1"},
+      {R"("study": {)", R"("study": {"settle": {"method": "viscous"},)", "study.settle.method: unknown value \"viscous\" (allowed: auto, inertial, local)"},
+      {R"("study": {)", R"("study": {"settle": {"method": "local"},)", ""},
       {"\"blocks\": [", "\"blocks\": [1, ", "blocks[0]: expected an object { ... }, got a number"},
       {R"("monitors": [)", R"("monitors": [}, )", "bad.json:22:16: expected a value"},
   };

@@ -98,6 +98,7 @@ TEST_CASE("model file: the vault written by cross_vault model reads back as the 
     o.kinematics = kinematics;
     o.max_edge = 0.6;
     o.steel_max_edge = 1.0;
+    o.settling = kinematics == analysis::VaultKinematics::rigid ? analysis::Settling::inertial : analysis::Settling::local;
     const auto expected = analysis::vault_structure(o);
     const auto file = vault_file(o);
     const auto& s = file.structure;
@@ -132,6 +133,7 @@ TEST_CASE("model file: the vault written by cross_vault model reads back as the 
     CHECK(file.study.window_end == o.window_end);
     CHECK(file.study.contacts == o.contacts);
     CHECK(file.study.baseline == o.baseline);
+    CHECK(file.study.settling == o.settling);
   }
 }
 

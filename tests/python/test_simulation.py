@@ -86,6 +86,25 @@ def test_deformable_blocks_expose_nodes_and_element_stresses():
     assert s[:, 2].mean() == pytest.approx(-2500 * 9.81 * 0.6 / 2, rel=0.25)
 
 
+def test_inertial_relaxation_and_local_damping_settle_to_one_rest():
+    m = blockdem.Model("a deformable pier and a rigid block on it")
+    m.material("stone", density=2500, youngs_modulus=1e9, poisson_ratio=0.2)
+    m.joint("*", "*", "elastic", normal_stiffness=1e11, shear_stiffness=5e10)
+    m.block("stone", box=((0, 0, -0.2), (1, 1, 0)), name="base", motion="base")
+    m.block("stone", box=((0.2, 0.2, 0), (0.8, 0.8, 0.6)), name="pier", max_edge=0.3)
+    m.block("stone", box=((0.5, 0.3, 0.6), (0.7, 0.7, 0.7)), name="cap")
+    settled = {}
+    for method in ("inertial", "local"):
+        sim = blockdem.Simulation(m, progress=False, settle_tolerance=1e-9, settle_steps=200000, settling=method)
+        assert sim.settle()["converged"]
+        settled[method] = (np.array(sim.node_positions), np.array(sim.block_positions))
+    sink = 2500 * 9.81 * 0.7 / 1e11 + 2500 * 9.81 * 0.3 / 1e9  # m: the joint's and the pier's share, for scale
+    for a, b in zip(settled["inertial"], settled["local"]):
+        assert np.abs(a - b).max() < 1e-4 * sink
+    with pytest.raises(ValueError, match="settling must be one of 'auto', 'inertial', 'local', got 'viscous'"):
+        blockdem.Simulation(m, progress=False, settling="viscous")
+
+
 def test_runs_without_the_gil():
     sim = blockdem.Simulation(two_courses(), progress=False)
     sim.settle()

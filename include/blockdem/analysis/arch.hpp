@@ -1,10 +1,10 @@
 #pragma once
 // Static stability of a semicircular masonry arch on fixed springings under its own weight plus a horizontal body
 // acceleration lambda g (the equivalent static analysis of De Lorenzis et al. 2007), with dry Mohr-Coulomb joints,
-// solved by the DEM with Cundall's local damping: the arch stands if the unbalanced force vanishes, and collapses
-// if a mechanism keeps moving. With `to_rest`, a collapse is followed to its end: the voussoirs fall onto a floor
-// (fixed blocks level with the springings, inside and outside the arch), tumble on it with general contacts
-// (vertex, edge and face) and come to rest there.
+// solved by the DEM with Cundall's local damping or inertial relaxation (settling.hpp): the arch stands if the
+// unbalanced force vanishes, and collapses if a mechanism keeps moving. With `to_rest`, a collapse is followed to its
+// end: the voussoirs fall onto a floor (fixed blocks level with the springings, inside and outside the arch), tumble
+// on it with general contacts (vertex, edge and face) and come to rest there.
 
 #include <algorithm>
 #include <chrono>
@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "blockdem/analysis/deformable_options.hpp"
+#include "blockdem/analysis/settling.hpp"
 #include "blockdem/analysis/model_file_writer.hpp"
 #include "blockdem/analysis/pushover_options.hpp"
 #include "blockdem/contact/mohr_coulomb.hpp"
@@ -23,6 +24,7 @@
 #include "blockdem/geometry/assembly_check.hpp"
 #include "blockdem/geometry/generators.hpp"
 #include "blockdem/geometry/queries.hpp"
+#include "blockdem/integrate/inertial_relaxation.hpp"
 #include "blockdem/integrate/simulation.hpp"
 #include "blockdem/io/vtk.hpp"
 
@@ -41,7 +43,11 @@ struct ArchOptions : DeformableOptions {
   double collapse_displacement = 0; // m: a voussoir moving this far means collapse (0: a quarter of the thickness)
   long long max_steps = 400000;
   bool to_rest = false;             // after a collapse, go on until the fallen voussoirs are at rest on the floor
-  bool nodal_damping = false;       // deformable: local damping on each node's own force (3DEC's), instead of on each
+  // How each trial comes to equilibrium or collapse (settling.hpp): inertial relaxation or local damping; auto:
+  // inertial with deformable voussoirs, local damping with rigid ones. A collapse followed to rest tumbles under
+  // local damping either way (a fall is no relaxation: velocities set to zero would stop it in mid-air).
+  Settling settling = Settling::automatic;
+  bool nodal_damping = false;       // deformable, local damping: on each node's own force (3DEC's), instead of on each
                                     // voussoir's rigid-body motion and deformation apart (damping::Local)
   std::string vtk_prefix;           // if set: <prefix>_blocks.vtu and <prefix>_contacts.vtu at the end
                                     // (and <prefix>_tetrahedra.vtu with the density scaling factor if deformable)
@@ -64,6 +70,8 @@ struct ArchOptions : DeformableOptions {
     check(unbalanced_tolerance > 0 && unbalanced_tolerance <= 0.1, "unbalanced tolerance must be in (0, 0.1]");
     check(!(to_rest && deformable), "a collapse followed to rest needs rigid voussoirs (no --deformable)");
   }
+  /// Whether the trials run by inertial relaxation.
+  bool inertial() const { return !to_rest && resolved(settling, deformable) == Settling::inertial; }
 };
 
 struct ArchResult {
@@ -151,7 +159,9 @@ inline ArchResult analyse_arch(const ArchOptions& o) {
   model::ContactSettings contacts;
   contacts.tolerance = 1e-4 * o.radius;
   damping::Local local;
-  local.split_rigid_motion = !o.nodal_damping;
+  local.split_rigid_motion = !o.nodal_damping && !o.inertial();
+  if (o.inertial()) local.coefficient = 0;
+  InertialRelaxation relaxation;
   Simulation<damping::Local, contact::MohrCoulomb> sim(model, local, [&](int, int) { return joint; }, contacts);
   const auto initial = model.bodies.position;
   const auto initial_nodes = model.deformable.nodes.position;
@@ -166,6 +176,7 @@ inline ArchResult analyse_arch(const ArchOptions& o) {
   r.tetrahedra = model.deformable.tetrahedra.size();
   for (r.steps = 0; r.steps < o.max_steps; ++r.steps) {
     sim.step();
+    if (o.inertial()) relaxation.after_step(model, sim.timestep());
     if (r.steps % 50 != 49) continue;
     r.max_displacement = 0;
     for (std::size_t i = 0; i < model.bodies.size(); ++i)

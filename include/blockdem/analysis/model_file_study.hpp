@@ -160,7 +160,9 @@ inline void read_study(const io::JsonFields& top, StudyOptions& o, RecordScale& 
                                                  {0, o.max_mass_increase_percent, false, false, "%"});
     }
     if (const auto* t = f.find("settle")) {
-      const io::JsonFields g(*t, "study.settle", {"tolerance", "max_steps"});
+      const io::JsonFields g(*t, "study.settle", {"method", "tolerance", "max_steps"});
+      o.settling = g.choice<Settling>("method", o.settling, {{"auto", Settling::automatic}, {"inertial", Settling::inertial},
+                                                             {"local", Settling::local}});
       o.settle_tolerance = g.number("tolerance", o.settle_tolerance, {0, 1, true, true, ""});
       o.settle_max_steps = static_cast<long long>(integer(g, "max_steps", static_cast<double>(o.settle_max_steps), {10, 1e12, false, false, "steps"}));
     }

@@ -195,8 +195,9 @@ inline void write_model_file(std::ostream& out, const ModelDescription& d, const
       << ", " << json_number(o.upper_hz) << "], \"branches\": " << o.branches << ", \"frame\": \"" << name(o.damping_frame)
       << "\"},\n    \"timestep\": {\"target_dt_s\": "
       << json_number(o.target_dt) << ", \"mass_increase_percent\": " << json_number(o.default_mass_increase_percent)
-      << ", \"max_mass_increase_percent\": " << json_number(o.max_mass_increase_percent) << "},\n    \"settle\": {\"tolerance\": "
-      << json_number(o.settle_tolerance) << ", \"max_steps\": " << o.settle_max_steps << "},\n    \"outputs\": {\"history_dt_s\": "
+      << ", \"max_mass_increase_percent\": " << json_number(o.max_mass_increase_percent) << "},\n    \"settle\": {\"method\": \""
+      << name(o.settling) << "\", \"tolerance\": " << json_number(o.settle_tolerance) << ", \"max_steps\": " << o.settle_max_steps
+      << "},\n    \"outputs\": {\"history_dt_s\": "
       << json_number(o.history_dt) << ", \"snapshots_every_s\": " << json_number(o.snapshots_every) << "},\n    \"collapse_displacement_m\": "
       << json_number(o.collapse_displacement) << ", \"runaway_displacement_m\": " << json_number(o.runaway_displacement)
       << ", \"max_speed_m_s\": " << json_number(o.max_speed) << ", \"free_vibration\": " << (o.free_vibration ? "true" : "false")

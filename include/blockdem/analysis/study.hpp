@@ -37,6 +37,7 @@
 #include "blockdem/damping/none.hpp"
 #include "blockdem/damping/rayleigh.hpp"
 #include "blockdem/damping/stiffness_proportional.hpp"
+#include "blockdem/integrate/inertial_relaxation.hpp"
 #include "blockdem/integrate/run.hpp"
 #include "blockdem/integrate/simulation.hpp"
 #include "blockdem/io/atomic_file.hpp"
@@ -108,17 +109,33 @@ typename Sim::PropertyFunction structure_properties(const Structure& s) {
   };
 }
 
-/// Static equilibrium under gravity with local damping (DESIGN §4): static, so every block takes the mass that gives
-/// one common timestep (3DEC's static mass scaling); the real masses are back when it returns.
+/// Whether the structure settles by inertial relaxation (StudyOptions::settling), not local damping.
+inline bool inertial_settling(const StudyOptions& o, const model::Model& m) {
+  return resolved(o.settling, !m.deformable.blocks.empty()) == Settling::inertial;
+}
+
+/// The damping of the simulation that settles: local damping, or its coefficient 0 under inertial relaxation.
+inline damping::Local settling_damping(const StudyOptions& o, const model::Model& m) {
+  damping::Local d;
+  if (inertial_settling(o, m)) d.coefficient = 0;
+  return d;
+}
+
+/// Static equilibrium under gravity (DESIGN §4) by inertial relaxation or local damping (o.settling; `sim` built
+/// with settling_damping(o, model)): static, so every block takes the mass that gives one common timestep (3DEC's
+/// static mass scaling); the real masses are back when it returns.
 template <class Settle>
 void settle(Settle& sim, double dt, const StudyOptions& o, SettlingResult& out) {
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   sim.scale_masses_for_statics(dt);
   out.dt = sim.timestep();
+  const bool inertial = inertial_settling(o, sim.model());
+  InertialRelaxation relaxation;
   auto last = t0;
   for (long long n = 0; n < o.settle_max_steps; ++n) {
     sim.step();
+    if (inertial) relaxation.after_step(sim.model(), sim.timestep());
     ++out.steps;
     if ((n & 1023) == 1023 && o.poll) o.poll();
     if (n % 10 != 9) continue;
@@ -279,7 +296,7 @@ void with_settled_structure(Structure& s, const StudyOptions& o, StudyResult& r,
     model::ContactSettings contacts = s.contacts;
     contacts.kinds = o.contacts;
     s.laws.fill(contacts);
-    Settle settle(model, damping::Local{}, detail::structure_properties<Settle>(s), contacts);
+    Settle settle(model, detail::settling_damping(o, model), detail::structure_properties<Settle>(s), contacts);
     r.model.contact_points = settle.contact_points();
     r.warnings = corner_point_warnings(s, contacts, settle);
     if (o.progress)

@@ -79,6 +79,7 @@ inline std::uint64_t study_hash(const StudyOptions& o, const Structure& s, const
   h.add(o.axis).add(o.record_level).add(o.levels).add(o.rest).add(o.collapse_displacement);
   h.add(static_cast<int>(o.damping)).add(static_cast<int>(o.damping_frame)).add(o.scheme_zeta()).add(o.frequency_hz).add(o.lower_hz).add(o.upper_hz).add(o.branches);
   h.add(o.target_dt).add(o.default_mass_increase_percent).add(o.settle_tolerance).add(o.settle_max_steps);
+  h.add(static_cast<int>(o.settling));
   h.add(o.free_vibration).add(o.history_dt).add(o.snapshots_every);
   h.add(static_cast<int>(o.contacts));
   return h.value();

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "blockdem/analysis/settling.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/model/contact_detection.hpp"
 #include "blockdem/core/number_text.hpp"
@@ -86,7 +87,8 @@ struct StudyOptions {
   // the collapse (below).
   model::ContactKinds contacts = model::ContactKinds::faces;
 
-  // Settling under gravity (static, local damping, static mass scaling).
+  // Settling under gravity (static, static mass scaling; inertial relaxation or local damping).
+  Settling settling = Settling::automatic;
   double settle_tolerance = 1e-5;          // unbalanced-force ratio
   long long settle_max_steps = 200000;
 
