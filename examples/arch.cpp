@@ -50,8 +50,8 @@ int main(int argc, char** argv) {
       ->transform(CLI::CheckedTransformer(std::map<std::string, analysis::Settling>{{"auto", analysis::Settling::automatic},
                                                                                     {"inertial", analysis::Settling::inertial},
                                                                                     {"local", analysis::Settling::local}}));
-  app.add_flag("--nodal-damping", o.nodal_damping, "deformable, local damping: local damping on each node's own force (3DEC's) instead of on each "
-               "voussoir's rigid-body motion and deformation apart (docs/arch.md)");
+  app.add_flag("--nodal-damping", o.nodal_damping, "deformable: local damping (so not inertial relaxation) on each node's own force "
+               "(3DEC's), not on each voussoir's rigid-body motion and deformation apart (docs/arch.md)");
   app.add_flag("--to-rest", o.to_rest, "after a collapse, go on until the voussoirs rest on the floor");
   app.add_flag("--json", json, "print a JSON object");
   app.add_option("--vtk", o.vtk_prefix, "write PREFIX_blocks.vtu and PREFIX_contacts.vtu (final state) for ParaView");

@@ -55,6 +55,12 @@ TEST_CASE("arch: bad options name the option") {
   o = {};
   o.thickness_ratio = 1.5;
   CHECK_THROWS_WITH_AS(analysis::analyse_arch(o), doctest::Contains("t/R"), InvalidArgument);
+  o = {};
+  o.deformable = true;
+  o.nodal_damping = true;
+  CHECK_FALSE(o.inertial());  // auto: the nodal form of local damping asked for
+  o.settling = analysis::Settling::inertial;
+  CHECK_THROWS_WITH_AS(analysis::analyse_arch(o), doctest::Contains("nodal damping is a form of local damping"), InvalidArgument);
 }
 
 TEST_CASE("two-column records: malformed lines are reported with file and line") {

@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "blockdem/analysis/deformable_options.hpp"
-#include "blockdem/analysis/settling.hpp"
 #include "blockdem/analysis/model_file_writer.hpp"
 #include "blockdem/analysis/pushover_options.hpp"
+#include "blockdem/analysis/settling.hpp"
 #include "blockdem/contact/mohr_coulomb.hpp"
 #include "blockdem/core/error.hpp"
 #include "blockdem/core/units.hpp"
@@ -44,8 +44,9 @@ struct ArchOptions : DeformableOptions {
   long long max_steps = 400000;
   bool to_rest = false;             // after a collapse, go on until the fallen voussoirs are at rest on the floor
   // How each trial comes to equilibrium or collapse (settling.hpp): inertial relaxation or local damping; auto:
-  // inertial with deformable voussoirs, local damping with rigid ones. A collapse followed to rest tumbles under
-  // local damping either way (a fall is no relaxation: velocities set to zero would stop it in mid-air).
+  // inertial with deformable voussoirs (local damping if nodal_damping asks for its nodal form), local damping with
+  // rigid ones. A collapse followed to rest tumbles under local damping either way (a fall is no relaxation:
+  // velocities set to zero would stop it in mid-air).
   Settling settling = Settling::automatic;
   bool nodal_damping = false;       // deformable, local damping: on each node's own force (3DEC's), instead of on each
                                     // voussoir's rigid-body motion and deformation apart (damping::Local)
@@ -69,9 +70,11 @@ struct ArchOptions : DeformableOptions {
     check(max_steps >= 100, "max steps must be >= 100");
     check(unbalanced_tolerance > 0 && unbalanced_tolerance <= 0.1, "unbalanced tolerance must be in (0, 0.1]");
     check(!(to_rest && deformable), "a collapse followed to rest needs rigid voussoirs (no --deformable)");
+    check(!(nodal_damping && settling == Settling::inertial),
+          "nodal damping is a form of local damping: it goes with settling local or auto, not inertial");
   }
   /// Whether the trials run by inertial relaxation.
-  bool inertial() const { return !to_rest && resolved(settling, deformable) == Settling::inertial; }
+  bool inertial() const { return !to_rest && !nodal_damping && resolved(settling, deformable) == Settling::inertial; }
 };
 
 struct ArchResult {
