@@ -262,7 +262,8 @@ inline std::string report_json(const StudyResult& r) {
       .add("nodes", static_cast<long long>(r.model.nodes)).add("tetrahedra", static_cast<long long>(r.model.tetrahedra))
       .add("contact_points", static_cast<long long>(r.model.contact_points)).add("ties", static_cast<long long>(r.model.ties))
       .add("free_mass_kg", r.model.free_mass);
-  settling.add("method", name(resolved(o.settling, r.model.deformable_blocks > 0))).add("steps", r.settling.steps).add("wall_seconds", r.settling.wall_seconds)
+  settling.add("method", name(resolved(o.settling, r.model.deformable_blocks > 0)))
+      .add("steps", r.settling.steps).add("wall_seconds", r.settling.wall_seconds)
       .add("unbalanced_force_ratio", r.settling.unbalanced_ratio).add("tolerance", o.settle_tolerance)
       .add("converged", r.settling.converged).add("static_mass_scaling_dt_s", r.settling.dt)
       .add("damaged_contact_points", r.settling.damaged_joints).add("cracked_contact_points", r.settling.cracked_joints)
