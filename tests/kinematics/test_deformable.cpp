@@ -338,12 +338,7 @@ TEST_CASE("deformable static mass scaling: the same equilibrium as unscaled, res
     std::vector<Vec3> nodes, blocks;
   };
   const auto settle = [](bool scaled) {
-    model::Model m;
-    m.add_block(geometry::make_box(Vec3(-1, -1, -0.5), Vec3(1, 1, 0)), 2000, "base", 0, model::Motion::fixed);
-    const auto d = m.add_block(geometry::make_box(Vec3(-0.2, -0.2, 0), Vec3(0.2, 0.2, 0.3)), 2000, "deformable", 1);
-    m.add_block(geometry::make_box(Vec3(0.05, -0.025, 0.3), Vec3(0.1, 0.025, 0.35)), 2000, "small", 1);
-    m.add_block(geometry::make_box(Vec3(-0.5, -0.3, 0), Vec3(-0.25, 0.3, 0.6)), 2000, "pillar", 1);
-    m.make_deformable(d, 0.2, model::IsotropicElastic(1e9, 0.2));
+    model::Model m = test::deformable_block_with_rigid_ones();
     model::ContactSettings contacts;
     contacts.tolerance = 0.01;
     Simulation<damping::Local, contact::Elastic> sim(m, damping::Local{}, [](int, int) { return contact::Elastic::Parameters(1e9, 4e8); },

@@ -3,6 +3,7 @@
 
 #include <doctest/doctest.h>
 
+#include "../integrate/fixtures.hpp"
 #include "../threads.hpp"
 
 #include <cmath>
@@ -87,15 +88,9 @@ TEST_CASE("inertial relaxation: a deformable column settles as rho g H^2 / (2E) 
 }
 
 TEST_CASE("inertial relaxation: a deformable block, a rigid block off centre on it and a rigid pillar come to local damping's rest") {
-  // The model of the static mass scaling test (test_deformable.cpp): the small block sits off the deformable block's
-  // centre, so the deformable block tilts and the small one turns with it: rotations take part too.
+  // The model of the static mass scaling test (test_deformable.cpp): rotations take part too.
   const auto settle = [](bool inertial) {
-    model::Model m;
-    m.add_block(geometry::make_box(Vec3(-1, -1, -0.5), Vec3(1, 1, 0)), 2000, "base", 0, model::Motion::fixed);
-    const auto d = m.add_block(geometry::make_box(Vec3(-0.2, -0.2, 0), Vec3(0.2, 0.2, 0.3)), 2000, "deformable", 1);
-    m.add_block(geometry::make_box(Vec3(0.05, -0.025, 0.3), Vec3(0.1, 0.025, 0.35)), 2000, "small", 1);
-    m.add_block(geometry::make_box(Vec3(-0.5, -0.3, 0), Vec3(-0.25, 0.3, 0.6)), 2000, "pillar", 1);
-    m.make_deformable(d, 0.2, model::IsotropicElastic(1e9, 0.2));
+    model::Model m = test::deformable_block_with_rigid_ones();
     model::ContactSettings contacts;
     contacts.tolerance = 0.01;
     Settle sim(m, local_damping(inertial), [](int, int) { return contact::Elastic::Parameters(1e9, 4e8); }, contacts);
@@ -107,7 +102,7 @@ TEST_CASE("inertial relaxation: a deformable block, a rigid block off centre on 
                                                                       << " stops), local damping " << local.steps);
   REQUIRE(inertial.converged);
   REQUIRE(local.converged);
-  const double sink = 1.177e-5;  // m, of the small block (test_deformable.cpp)
+  const double sink = 1.177e-5;  // m, of the small block (fixtures.hpp)
   REQUIRE(inertial.state.size() == local.state.size());
   double largest = 0;
   for (std::size_t i = 0; i < local.state.size(); ++i) largest = std::max(largest, std::abs(inertial.state[i] - local.state[i]));
